@@ -1,0 +1,72 @@
+/*---------------------------------------------------------------------------*\
+Application
+    tfdemFoam
+
+Description
+    Gas-phase solver of TFDEM: volume-averaged incompressible gas equations of
+    the hybrid two-fluid/DEM method (seed 001 eq. 7-9; seed 000 eq. 1 and 3):
+
+        d(eps)/dt + div(eps U) = 0
+        d(eps U)/dt + div(eps U U) - div(eps nu grad U)
+            = -eps grad(p)/rho + eps g - K (U - Us)/rho
+
+    with gas volume fraction eps, pressure p in Pa, the semi-implicit drag
+    coefficient K (kg/m^3/s) and the particle-mean velocity Us handed over by
+    the coupling. Without particles (eps = 1, K = 0) it is the incompressible
+    PIMPLE solver with pressure in Pa. Explicit forces (gravity, explicit drag)
+    enter through face fluxes as in DPMFoam so the pressure equation stays
+    consistent with them.
+\*---------------------------------------------------------------------------*/
+
+#include "fvCFD.H"
+#include "pimpleControl.H"
+
+int main(int argc, char *argv[])
+{
+    argList::addNote
+    (
+        "Volume-averaged gas solver of the TFDEM hybrid two-fluid/DEM method."
+    );
+
+    #include "postProcess.H"
+
+    #include "addCheckCaseOptions.H"
+    #include "setRootCaseLists.H"
+    #include "createTime.H"
+    #include "createMesh.H"
+    #include "createControl.H"
+    #include "createTimeControls.H"
+    #include "createFields.H"
+    #include "initContinuityErrs.H"
+
+    Info<< "\nStarting time loop\n" << endl;
+
+    while (runTime.run())
+    {
+        #include "readTimeControls.H"
+        #include "CourantNo.H"
+        #include "setDeltaT.H"
+
+        ++runTime;
+
+        Info<< "Time = " << runTime.timeName() << nl << endl;
+
+        while (pimple.loop())
+        {
+            #include "UEqn.H"
+
+            while (pimple.correct())
+            {
+                #include "pEqn.H"
+            }
+        }
+
+        runTime.write();
+
+        runTime.printExecutionTime(Info);
+    }
+
+    Info<< "End\n" << endl;
+
+    return 0;
+}
