@@ -3,11 +3,13 @@
 #include <cstdlib>
 #include <cstring>
 #include <string>
+#include <vector>
 
 #include "atom.h"
 #include "error.h"
 #include "memory.h"
 #include "tfdem/particle_forces.h"
+#include "tfdem/suggest.h"
 
 using namespace LAMMPS_NS;
 using namespace FixConst;
@@ -64,8 +66,10 @@ void FixTfdemCoupling::parse_arguments(int narg, char **arg) {
       has_gravity_ = true;
       iarg += 4;
     } else {
-      const std::string msg = "fix tfdem/coupling: unknown argument '" + key +
-                              "' (expected: weight_fraction f gravity gx gy gz)";
+      const std::vector<std::string> keywords = {"weight_fraction", "gravity"};
+      const std::string msg = "fix tfdem/coupling: unknown argument '" + key + "'" +
+                              tfdem::did_you_mean(key, keywords) +
+                              "; valid keywords: " + tfdem::quoted_list(keywords);
       error->all(FLERR, msg.c_str());
     }
   }

@@ -1,0 +1,113 @@
+// Contact relations: seed 001 eq. 16, 27, 41, 43; seed 000 eq. 25-26, Table 1.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "tfdem/contact.h"
+
+namespace {
+
+using namespace tfdem::contact;
+constexpr double kPi = 3.14159265358979323846;
+
+struct CollisionResult {
+  double restitution;
+  double duration;
+};
+
+// Head-on collision m x'' = -k x - eta x' from overlap 0 at approach speed v0, integrated
+// with velocity Verlet until the overlap returns to 0 (linear interpolation of the crossing).
+CollisionResult integrate_collision(double k, double eta, double m, double v0) {
+  const double dt = contact_time_from_damping(k, eta, m) / 20000.0;
+  double x = 0.0, v = v0, t = 0.0;
+  double a = (-k * x - eta * v) / m;
+  while (true) {
+    const double x_old = x, v_old = v, t_old = t;
+    const double v_half = v + 0.5 * dt * a;
+    x += dt * v_half;
+    const double a_guess = (-k * x - eta * v_half) / m;
+    v = v_half + 0.5 * dt * a_guess;
+    a = (-k * x - eta * v) / m;
+    t += dt;
+    if (x < 0.0 && t > dt) {
+      const double s = x_old / (x_old - x);
+      return {-(v_old + s * (v - v_old)) / v0, t_old + s * dt};
+    }
+  }
+}
+
+TEST(Contact, EffectiveMassOfEqualSpheresIsHalfAndWallIsParticleMass) {
+  EXPECT_DOUBLE_EQ(effective_mass(2.0, 2.0), 1.0);
+  EXPECT_DOUBLE_EQ(effective_mass(3.0, std::numeric_limits<double>::infinity()), 3.0);
+  EXPECT_DOUBLE_EQ(effective_mass(1.0, 3.0), 1.0 * 3.0 / 4.0);
+}
+
+TEST(Contact, SphereMassIsDensityTimesPiDCubedOverSix) {
+  EXPECT_DOUBLE_EQ(sphere_mass(0.004, 2700.0), 2700.0 * kPi * 0.004 * 0.004 * 0.004 / 6.0);
+}
+
+TEST(Contact, DampingAndRestitutionAreInverse) {
+  const double k = 800.0, m = 4.5e-5;
+  for (double e : {0.1, 0.5, 0.86, 0.97, 0.999}) {
+    const double eta = normal_damping(k, e, m);
+    EXPECT_NEAR(restitution_from_damping(k, eta, m), e, 1e-12) << "e_n = " << e;
+    EXPECT_NEAR(contact_time_from_damping(k, eta, m), contact_time(k, e, m), 1e-15);
+  }
+}
+
+TEST(Contact, ZeroRestitutionIsCriticalDamping) {
+  EXPECT_DOUBLE_EQ(normal_damping(800.0, 0.0, 1e-4), 2.0 * std::sqrt(800.0 * 1e-4));
+  EXPECT_EQ(restitution_from_damping(800.0, 2.0 * std::sqrt(800.0 * 1e-4) * 1.01, 1e-4), 0.0);
+}
+
+TEST(Contact, ElasticContactTimeIsHalfPeriod) {
+  const double k = 800.0, m = 1e-4;
+  EXPECT_NEAR(contact_time(k, 1.0, m), kPi * std::sqrt(m / k), 1e-15);
+}
+
+// Numerical round trip: the requested e_n within 0.5 %, the predicted t_c within 1 %.
+TEST(Contact, IntegratedCollisionReturnsRequestedRestitutionAndContactTime) {
+  const double k = 800.0;
+  const double m = effective_mass(sphere_mass(0.004, 2700.0), sphere_mass(0.004, 2700.0));
+  for (double e : {0.3, 0.7, 0.86, 0.97}) {
+    const double eta = normal_damping(k, e, m);
+    const CollisionResult r = integrate_collision(k, eta, m, 1.0);
+    EXPECT_NEAR(r.restitution / e, 1.0, 5e-3) << "e_n = " << e;
+    EXPECT_NEAR(r.duration / contact_time(k, e, m), 1.0, 1e-2) << "e_n = " << e;
+  }
+}
+
+// Seed 000 Table 1 damping is absolute: 0.018 N s/m (jet bed) and 0.00177 N s/m (uniform bed)
+// with k_n = 800 N/m give e_n ~ 0.86 and ~ 0.97 (SPEC.md), computed here from eq. 25-26.
+TEST(Contact, PaperTableOneDampingGivesExpectedRestitution) {
+  const double m_jet = effective_mass(sphere_mass(0.004, 2700.0), sphere_mass(0.004, 2700.0));
+  const double m_uniform = effective_mass(sphere_mass(0.0025, 2526.0), sphere_mass(0.0025, 2526.0));
+  const double gamma_jet = 0.018 / m_jet;
+  const double tc_jet = kPi / std::sqrt(800.0 / m_jet - gamma_jet * gamma_jet / 4.0);
+  EXPECT_NEAR(restitution_from_damping(800.0, 0.018, m_jet), std::exp(-gamma_jet * tc_jet / 2.0), 1e-14);
+  EXPECT_NEAR(restitution_from_damping(800.0, 0.018, m_jet), 0.86, 0.005);
+  EXPECT_NEAR(restitution_from_damping(800.0, 0.00177, m_uniform), 0.97, 0.005);
+}
+
+TEST(Contact, TangentialStiffnessGivesEqualContactTimes) {
+  const double kn = 800.0, en = 0.86, beta0 = 0.4, m = 4.5e-5;
+  const double kt = tangential_stiffness(kn, en, beta0);
+  const double log_b = std::log(beta0);
+  const double tc_t = std::sqrt(2.0 / 7.0 * m * (kPi * kPi + log_b * log_b) / kt);  // eq. 42
+  EXPECT_NEAR(tc_t, contact_time(kn, en, m), 1e-15);
+  EXPECT_NEAR(tangential_stiffness(kn, 1.0, 1.0), 2.0 / 7.0 * kn, 1e-12);
+}
+
+TEST(Contact, RecommendedStepIsContactTimeOverN) {
+  EXPECT_DOUBLE_EQ(recommended_time_step(7.5e-4, 50.0), 1.5e-5);
+}
+
+TEST(Contact, InvalidArgumentsAreRejected) {
+  EXPECT_THROW(normal_damping(800.0, 1.2, 1e-4), std::invalid_argument);
+  EXPECT_THROW(normal_damping(-1.0, 0.5, 1e-4), std::invalid_argument);
+  EXPECT_THROW(sphere_mass(-0.001, 2500.0), std::invalid_argument);
+  EXPECT_THROW(tangential_stiffness(800.0, 0.0, 0.5), std::invalid_argument);
+}
+
+}  // namespace
