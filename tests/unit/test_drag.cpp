@@ -1,0 +1,148 @@
+// Drag closures: seed 000 eq. 29-31, seed 001 eq. 3-6, Di Felice (1994), Koch & Hill (2001).
+// Expected values are written out as the formulas, independent of the implementation.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "tfdem/drag.h"
+
+namespace {
+
+using namespace tfdem::drag;
+
+const Gas kAir{1.2, 1.8e-5};
+constexpr double kD = 2.5e-3;  // uniform-bed particle diameter (m)
+
+double stokes() { return 18.0 * kAir.viscosity / (kD * kD); }
+
+// A state in the Stokes limit: lone particle (eps_s = 1e-9), Re ~ 1e-8.
+State stokes_state() {
+  const double eps_g = 1.0 - 1e-9;
+  const double slip = 1e-8 * kAir.viscosity / (eps_g * kAir.density * kD);
+  return {eps_g, kD, slip};
+}
+
+// Every closure but min(Ergun, Wen-Yu) reduces to Stokes drag 3 pi mu d (u - v) for a lone
+// particle at Re -> 0, i.e. beta/eps_s -> 18 mu/d^2 (Di Felice: 4.8^2/24 of it). Tolerance
+// 1e-4: the leading corrections are 3/sqrt(2) sqrt(eps_s) ~ 7e-5 and 0.15 Re^0.687 ~ 5e-7.
+TEST(Drag, StokesLimitOfEachLaw) {
+  for (Law law : {Law::ErgunWenYu, Law::ErgunWenYuReview, Law::HillKochLadd, Law::Beetstra, Law::KochHill}) {
+    EXPECT_NEAR(beta_per_solid_fraction(law, stokes_state(), kAir) / stokes(), 1.0, 1e-4) << law_name(law);
+  }
+  EXPECT_NEAR(beta_per_solid_fraction(Law::DiFelice, stokes_state(), kAir) / stokes(), 4.8 * 4.8 / 24.0, 1e-4);
+  EXPECT_NEAR(stokes_beta_per_solid_fraction(kD, kAir), stokes(), 1e-12 * stokes());
+}
+
+// Documented: min(Ergun, Wen-Yu) takes Ergun in the dilute low-Re limit, far below Stokes.
+TEST(Drag, MinErgunWenYuMissesStokesLimitAsDocumented) {
+  const State s = stokes_state();
+  const double eps_s = 1.0 - s.gas_fraction;
+  const double ergun = kAir.viscosity / (kD * kD) * (150.0 * eps_s / s.gas_fraction + 1.75 * reynolds(s, kAir));
+  EXPECT_NEAR(beta_per_solid_fraction(Law::MinErgunWenYu, s, kAir), ergun, 1e-9 * ergun);
+  EXPECT_LT(ergun, 1e-3 * stokes());
+}
+
+TEST(Drag, ReynoldsNumberUsesGasFraction) {
+  EXPECT_DOUBLE_EQ(reynolds({0.9, kD, 1.0}, kAir), 0.9 * 1.2 * 1.0 * kD / 1.8e-5);
+}
+
+TEST(Drag, DragCoefficientIsSchillerNaumannBelowRe1000) {
+  EXPECT_DOUBLE_EQ(drag_coefficient(10.0, 0.44), 24.0 * (1.0 + 0.15 * std::pow(10.0, 0.687)) / 10.0);
+  EXPECT_DOUBLE_EQ(drag_coefficient(1000.0, 0.43), 0.43);
+  // Schiller-Naumann reaches 0.4385 at Re = 1000: the switch to 0.43/0.44 jumps by < 2 %.
+  const double below = drag_coefficient(1000.0 * (1 - 1e-12), 0.44);
+  EXPECT_NEAR(below / 0.44, 1.0, 0.02);
+  EXPECT_NEAR(below / 0.43, 1.0, 0.02);
+}
+
+// Seed 000 eq. 30 by hand: Ergun at eps_g = 0.5, Wen-Yu (eps_g^-2.7, C_D of eq. 31) at 0.9.
+TEST(Drag, PaperLawHandComputedPoints) {
+  const double mu = kAir.viscosity, rho = kAir.density, u = 1.0;
+  {
+    const double eg = 0.5, es = 0.5;
+    const double expected = 150.0 * es * es * mu / (eg * kD * kD) + 1.75 * es * rho * u / kD;
+    EXPECT_NEAR(beta(Law::ErgunWenYu, {eg, kD, u}, kAir), expected, 1e-12 * expected);
+  }
+  {
+    const double eg = 0.9, es = 0.1;
+    const double re = kD * rho * u * eg / mu;
+    const double cd = 24.0 * (1.0 + 0.15 * std::pow(re, 0.687)) / re;
+    const double expected = 0.75 * cd * es * eg * rho * u / kD * std::pow(eg, -2.7);
+    EXPECT_NEAR(beta(Law::ErgunWenYu, {eg, kD, u}, kAir), expected, 1e-12 * expected);
+    const double review = 0.75 * cd * es * eg * rho * u / kD * std::pow(eg, -2.65);
+    EXPECT_NEAR(beta(Law::ErgunWenYuReview, {eg, kD, u}, kAir), review, 1e-12 * review);
+  }
+}
+
+// The paper's switch at eps_g = 0.8 is a jump, asserted as such: at a bubbling-bed slip of
+// 1 m/s, Ergun (below) and Wen-Yu (at and above) differ; the value below equals Ergun.
+TEST(Drag, PaperSwitchAtPointEightJumpsAsDocumented) {
+  const double mu = kAir.viscosity, rho = kAir.density, u = 1.0, es = 0.2;
+  const double below = beta(Law::ErgunWenYu, {0.8 - 1e-12, kD, u}, kAir);
+  const double at = beta(Law::ErgunWenYu, {0.8, kD, u}, kAir);
+  const double ergun = 150.0 * es * es * mu / (0.8 * kD * kD) + 1.75 * es * rho * u / kD;
+  EXPECT_NEAR(below, ergun, 1e-9 * ergun);
+  EXPECT_GT(std::abs(at / below - 1.0), 0.05);
+}
+
+// min(Ergun, Wen-Yu) is continuous at 0.8 (both branches are continuous there).
+TEST(Drag, MinErgunWenYuIsContinuousAtSwitch) {
+  for (double u : {0.01, 0.3, 1.0, 5.0}) {
+    const double below = beta(Law::MinErgunWenYu, {0.8 - 1e-9, kD, u}, kAir);
+    const double above = beta(Law::MinErgunWenYu, {0.8 + 1e-9, kD, u}, kAir);
+    EXPECT_NEAR(above / below, 1.0, 1e-6) << "slip " << u;
+  }
+}
+
+// Hill-Koch-Ladd's A switches at eps_g = 0.6 from 18 eps_g^3 F0/eps_s = 178.2 to 180: a 1 %
+// jump in the viscous term. Koch-Hill's F0 switches at eps_s = 0.4 from 18.33 to 18.52 (1 %).
+TEST(Drag, LatticeBoltzmannLawsNearlyContinuousAtTheirSwitches) {
+  for (double u : {1e-4, 0.5}) {
+    const double hkl_lo = beta(Law::HillKochLadd, {0.6 - 1e-12, kD, u}, kAir);
+    const double hkl_hi = beta(Law::HillKochLadd, {0.6 + 1e-12, kD, u}, kAir);
+    EXPECT_NEAR(hkl_hi / hkl_lo, 1.0, 0.015);
+    const double kh_lo = beta(Law::KochHill, {0.6 - 1e-12, kD, u}, kAir);
+    const double kh_hi = beta(Law::KochHill, {0.6 + 1e-12, kD, u}, kAir);
+    EXPECT_NEAR(kh_hi / kh_lo, 1.0, 0.015);
+  }
+}
+
+// Beetstra by hand (seed 001 eq. 6) at eps_g = 0.6, Re = 50.
+TEST(Drag, BeetstraHandComputedPoint) {
+  const double eg = 0.6, es = 0.4, re = 50.0;
+  const double u = re * kAir.viscosity / (eg * kAir.density * kD);
+  const double a = 180.0 + 18.0 * std::pow(eg, 4) / es * (1.0 + 1.5 * std::sqrt(es));
+  const double b = 0.31 * (1.0 / eg + 3.0 * eg * es + 8.4 * std::pow(re, -0.343)) /
+                   (1.0 + std::pow(10.0, 3.0 * es) * std::pow(re, 2.0 * eg - 2.5));
+  const double f = a * es * es / eg + b * es * re;
+  const double expected = f * kAir.viscosity / (kD * kD);
+  EXPECT_NEAR(beta(Law::Beetstra, {eg, kD, u}, kAir), expected, 1e-12 * expected);
+}
+
+// Dense packed bed: every Ergun-type law gives beta/eps_s > Stokes (hindered settling).
+TEST(Drag, DenseBedDragExceedsStokes) {
+  for (std::size_t i = 0; i < law_names().size(); ++i) {
+    const Law law = static_cast<Law>(i);
+    EXPECT_GT(beta_per_solid_fraction(law, {0.45, kD, 0.5}, kAir), stokes()) << law_name(law);
+  }
+}
+
+TEST(Drag, NamesRoundTripAndUnknownNameListsValidOnes) {
+  for (const auto &name : law_names()) EXPECT_EQ(law_name(law_from_name(name)), name);
+  try {
+    law_from_name("beetstr");
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument &e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("did you mean 'beetstra'?"), std::string::npos) << what;
+    EXPECT_NE(what.find("'koch_hill'"), std::string::npos) << what;
+  }
+}
+
+TEST(Drag, InvalidStateIsRejected) {
+  EXPECT_THROW(beta(Law::Beetstra, {0.0, kD, 1.0}, kAir), std::invalid_argument);
+  EXPECT_THROW(beta(Law::Beetstra, {1.2, kD, 1.0}, kAir), std::invalid_argument);
+  EXPECT_THROW(beta(Law::Beetstra, {0.5, -kD, 1.0}, kAir), std::invalid_argument);
+}
+
+}  // namespace
