@@ -13,7 +13,8 @@ BUILD="$TOP/build"
 OPENFOAM_VERSION=1912
 OPENFOAM_SRC="$CACHE/openfoam-src"
 APT_PACKAGES=(openfoam libopenfoam liggghts libliggghts-dev libopenmpi-dev openmpi-bin
-              libyaml-cpp-dev libgtest-dev googletest cmake g++ make xz-utils python3-matplotlib)
+              libyaml-cpp-dev libgtest-dev googletest cmake g++ make dpkg-dev bzip2 xz-utils
+              python3 python3-matplotlib)
 OPENFOAM_LNINCLUDE_DIRS=(OpenFOAM OSspecific/POSIX finiteVolume meshTools)
 
 log() { printf '[tfdem setup] %s\n' "$*"; }
