@@ -1,0 +1,89 @@
+// Void fraction (gas volume fraction) from particles, and the particle-to-cell weights that
+// every transfer between particles and cells reuses.
+//
+// Methods (chosen per case):
+//  - centroid: each particle's whole volume goes to the cell holding its centre (seed 000
+//    eq. 34: eps_s = sum_i V_i / V_cell). Cheap; noisy and unsafe when cells are not several
+//    particle diameters wide.
+//  - divided: the particle's volume is split over the cells it overlaps, by a lattice of
+//    sample points inside the sphere (equal weights in 3-D; in 2-D, weights proportional to
+//    the sphere's chord through the thin direction).
+//  - porous_cube: Link et al., seed 001 eq. 33-37: the particle is a porous cube of side
+//    d_cube = a d_p (eq. 34), a >= (pi/6)^(1/3) ~ 0.806 (eq. 35); f_cell^i is the fraction of
+//    the cube inside each cell, exact on a Cartesian grid (eq. 37: eps_g = 1 - eps_cube sum f).
+// 2-D rule of seed 000 (after eq. 35): one particle layer, cell depth = d_p; the thin
+// direction (z) is not split.
+// Parts of a particle outside the domain (a particle touching a wall) are given to the
+// inside cells in proportion, so sum_cells (1 - eps) V_cell = sum_i V_i always holds.
+#ifndef TFDEM_VOID_FRACTION_H
+#define TFDEM_VOID_FRACTION_H
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "tfdem/grid.h"
+#include "tfdem/particles.h"
+
+namespace tfdem {
+
+enum class VoidFractionMethod { Centroid, Divided, PorousCube };
+
+// Names accepted in configuration files, in enum order.
+const std::vector<std::string> &void_fraction_method_names();
+// The method called `name`; throws std::invalid_argument listing the valid names.
+VoidFractionMethod void_fraction_method_from_name(const std::string &name);
+
+// Smallest porous-cube factor a, seed 001 eq. 35: the cube holds the sphere's volume.
+double minimum_cube_factor();
+
+struct VoidFractionOptions {
+  VoidFractionMethod method = VoidFractionMethod::Centroid;
+  double cube_factor = 1.0;           // a of seed 001 eq. 34
+  int divided_points_per_diameter = 6;  // sample lattice of the divided method (even: none on a face)
+  bool two_dimensional = false;       // seed 000's one-layer rule
+  double gas_fraction_floor = 0.0;    // eps_g never below this (0 = no floor)
+};
+
+// Particle-to-cell weights in compressed rows: particle p's share w of its volume goes to
+// cells[k] with weights[k] for k in [offsets[p], offsets[p+1]); each row sums to 1.
+struct CellWeights {
+  std::vector<std::size_t> offsets{0};
+  std::vector<int> cells;
+  std::vector<double> weights;
+  std::size_t particle_count() const { return offsets.size() - 1; }
+};
+
+// Weights of `options.method` for particles on `grid`. Throws std::out_of_range naming the
+// first particle whose centre is outside the grid.
+CellWeights compute_weights(const CartesianGrid &grid, const ParticleView &particles,
+                            const VoidFractionOptions &options);
+
+// Centroid weights from cell indices found by the caller (e.g. OpenFOAM's findCell on an
+// unstructured mesh); throws std::out_of_range for a negative index.
+CellWeights centroid_weights(const int *cell_of_particle, std::size_t count);
+
+// Per-cell result of mapping particle volume.
+struct GasFraction {
+  std::vector<double> solid_volume;  // sum_i w_ic V_i (m^3)
+  std::vector<double> gas_fraction;  // max(1 - solid_volume / V_cell, floor)
+  std::size_t floored_cells = 0;     // cells where the floor replaced a lower value
+  double lowest_unfloored = 1.0;     // smallest 1 - solid_volume / V_cell before the floor
+};
+
+// Solid volume and gas fraction per cell; cell_volume has one entry per cell.
+GasFraction map_gas_fraction(const CellWeights &weights, const ParticleView &particles,
+                             const std::vector<double> &cell_volume, double floor);
+
+// Cell volumes of `grid`: V = dx dy dz; under the 2-D rule the depth is `depth_2d` (= d_p).
+std::vector<double> cell_volumes(const CartesianGrid &grid, bool two_dimensional, double depth_2d);
+
+// Value at point p of a cell-centred field with `components` values per cell, by
+// trilinear interpolation between cell centres, extrapolated linearly in the half cells at
+// the domain boundary: exact for fields linear in x, y, z. Axes with one cell are constant.
+void interpolate(const CartesianGrid &grid, const double *cell_field, int components,
+                 const double *p, double *out);
+
+}  // namespace tfdem
+
+#endif
