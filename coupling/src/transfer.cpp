@@ -129,11 +129,12 @@ TransferMethod transfer_method_from_name(const std::string &name) {
                               "; valid: " + quoted_list(names));
 }
 
-TransferResult transfer(const CellWeights &weights, const ParticleView &particles, const CellGas &cells,
-                        const GasAtParticles &at_particles, const TransferOptions &options) {
+void transfer(const CellWeights &weights, const ParticleView &particles, const CellGas &cells,
+              const GasAtParticles &at_particles, const TransferOptions &options, TransferResult &r) {
   if (weights.particle_count() != particles.count)
     throw std::invalid_argument("transfer: weights are for a different number of particles");
-  TransferResult r;
+  r.momentum_imbalance = {0.0, 0.0, 0.0};
+  r.drag_magnitude_sum = 0.0;
   r.particle_drag.assign(3 * particles.count, 0.0);
   r.cell_coefficient.assign(cells.cell_count, 0.0);
   r.cell_solid_velocity.assign(3 * cells.cell_count, 0.0);
@@ -148,6 +149,12 @@ TransferResult transfer(const CellWeights &weights, const ParticleView &particle
       per_particle_drag(particles, at_particles, options, r);
   }
   finish(particles, cells, at_particles, r);
+}
+
+TransferResult transfer(const CellWeights &weights, const ParticleView &particles, const CellGas &cells,
+                        const GasAtParticles &at_particles, const TransferOptions &options) {
+  TransferResult r;
+  transfer(weights, particles, cells, at_particles, options, r);
   return r;
 }
 

@@ -57,30 +57,49 @@ void add_share(CellWeights &w, std::size_t row_start, int cell, double weight) {
   w.weights.push_back(weight);
 }
 
-CellWeights centroid(const CartesianGrid &grid, const ParticleView &particles) {
-  CellWeights w;
-  w.offsets.reserve(particles.count + 1);
-  w.cells.reserve(particles.count);
+void centroid(const CartesianGrid &grid, const ParticleView &particles, CellWeights &w) {
+  w.offsets.resize(particles.count + 1);
+  w.cells.resize(particles.count);
   w.weights.assign(particles.count, 1.0);
   for (std::size_t p = 0; p < particles.count; ++p) {
     const double *x = particles.position + 3 * p;
     const int cell = grid.locate(x);
     if (cell < 0) outside(p, x, grid);
-    w.cells.push_back(cell);
-    w.offsets.push_back(p + 1);
+    w.cells[p] = cell;
+    w.offsets[p + 1] = p + 1;
   }
-  return w;
 }
 
-CellWeights divided(const CartesianGrid &grid, const ParticleView &particles, int n, bool two_d) {
+// True when the sphere's bounding box lies in the cell of its centre (in 2-D: in x and y).
+bool sphere_in_one_cell(const CartesianGrid &grid, const double *x, double radius, bool two_d) {
+  const int axes = two_d ? 2 : 3;
+  for (int a = 0; a < axes; ++a)
+    if (grid.clamped_index(a, x[a] - radius) != grid.clamped_index(a, x[a] + radius)) return false;
+  return true;
+}
+
+void clear(CellWeights &w, std::size_t particle_count) {
+  w.offsets.clear();
+  w.offsets.reserve(particle_count + 1);
+  w.offsets.push_back(0);
+  w.cells.clear();
+  w.weights.clear();
+}
+
+void divided(const CartesianGrid &grid, const ParticleView &particles, int n, bool two_d, CellWeights &w) {
   const std::vector<SamplePoint> samples = sphere_samples(n, two_d);
-  CellWeights w;
-  w.offsets.reserve(particles.count + 1);
+  clear(w, particles.count);
   for (std::size_t p = 0; p < particles.count; ++p) {
     const double *x = particles.position + 3 * p;
     if (grid.locate(x) < 0) outside(p, x, grid);
     const double d = particles.diameter[p];
     const std::size_t row = w.cells.size();
+    if (sphere_in_one_cell(grid, x, 0.5 * d, two_d)) {
+      w.cells.push_back(grid.locate(x));
+      w.weights.push_back(1.0);
+      w.offsets.push_back(w.cells.size());
+      continue;
+    }
     for (const auto &s : samples) {
       int idx[3];
       for (int a = 0; a < 3; ++a) idx[a] = grid.clamped_index(a, x[a] + d * s.offset[a]);
@@ -88,7 +107,6 @@ CellWeights divided(const CartesianGrid &grid, const ParticleView &particles, in
     }
     w.offsets.push_back(w.cells.size());
   }
-  return w;
 }
 
 // Overlap lengths of [lo, hi] with the cells along one axis, clipped to the domain.
@@ -102,9 +120,8 @@ int axis_overlaps(const CartesianGrid &grid, int axis, double lo, double hi, int
   return i1 - i0 + 1;
 }
 
-CellWeights porous_cube(const CartesianGrid &grid, const ParticleView &particles, double a, bool two_d) {
-  CellWeights w;
-  w.offsets.reserve(particles.count + 1);
+void porous_cube(const CartesianGrid &grid, const ParticleView &particles, double a, bool two_d, CellWeights &w) {
+  clear(w, particles.count);
   constexpr int kMaxSpan = 64;
   for (std::size_t p = 0; p < particles.count; ++p) {
     const double *x = particles.position + 3 * p;
@@ -138,7 +155,6 @@ CellWeights porous_cube(const CartesianGrid &grid, const ParticleView &particles
         }
     w.offsets.push_back(w.cells.size());
   }
-  return w;
 }
 
 }  // namespace
@@ -158,23 +174,30 @@ VoidFractionMethod void_fraction_method_from_name(const std::string &name) {
 
 double minimum_cube_factor() { return std::cbrt(kPi / 6.0); }
 
-CellWeights compute_weights(const CartesianGrid &grid, const ParticleView &particles,
-                            const VoidFractionOptions &options) {
+void compute_weights(const CartesianGrid &grid, const ParticleView &particles,
+                     const VoidFractionOptions &options, CellWeights &out) {
   grid.validate();
   switch (options.method) {
     case VoidFractionMethod::Centroid:
-      return centroid(grid, particles);
+      return centroid(grid, particles, out);
     case VoidFractionMethod::Divided:
       if (options.divided_points_per_diameter < 1)
         throw std::invalid_argument("divided_points_per_diameter must be >= 1");
-      return divided(grid, particles, options.divided_points_per_diameter, options.two_dimensional);
+      return divided(grid, particles, options.divided_points_per_diameter, options.two_dimensional, out);
     case VoidFractionMethod::PorousCube:
       if (options.cube_factor < minimum_cube_factor() * (1.0 - 1e-12))
         throw std::invalid_argument("porous cube factor a = " + std::to_string(options.cube_factor) +
                                     " is below (pi/6)^(1/3) = 0.806 (seed 001 eq. 35)");
-      return porous_cube(grid, particles, options.cube_factor, options.two_dimensional);
+      return porous_cube(grid, particles, options.cube_factor, options.two_dimensional, out);
   }
   throw std::invalid_argument("unknown void fraction method");
+}
+
+CellWeights compute_weights(const CartesianGrid &grid, const ParticleView &particles,
+                            const VoidFractionOptions &options) {
+  CellWeights w;
+  compute_weights(grid, particles, options, w);
+  return w;
 }
 
 CellWeights centroid_weights(const int *cell_of_particle, std::size_t count) {
@@ -190,12 +213,13 @@ CellWeights centroid_weights(const int *cell_of_particle, std::size_t count) {
   return w;
 }
 
-GasFraction map_gas_fraction(const CellWeights &weights, const ParticleView &particles,
-                             const std::vector<double> &cell_volume, double floor) {
+void map_gas_fraction(const CellWeights &weights, const ParticleView &particles,
+                      const std::vector<double> &cell_volume, double floor, GasFraction &out) {
   if (!(floor >= 0.0 && floor < 1.0))
     throw std::invalid_argument("gas fraction floor must be in [0, 1), got " + std::to_string(floor));
-  GasFraction out;
   out.solid_volume.assign(cell_volume.size(), 0.0);
+  out.floored_cells = 0;
+  out.lowest_unfloored = 1.0;
   for (std::size_t p = 0; p < particles.count; ++p) {
     const double volume = sphere_volume(particles.diameter[p]);
     for (std::size_t k = weights.offsets[p]; k < weights.offsets[p + 1]; ++k)
@@ -208,6 +232,12 @@ GasFraction map_gas_fraction(const CellWeights &weights, const ParticleView &par
     if (eps < floor) ++out.floored_cells;
     out.gas_fraction[c] = std::max(eps, floor);
   }
+}
+
+GasFraction map_gas_fraction(const CellWeights &weights, const ParticleView &particles,
+                             const std::vector<double> &cell_volume, double floor) {
+  GasFraction out;
+  map_gas_fraction(weights, particles, cell_volume, floor, out);
   return out;
 }
 

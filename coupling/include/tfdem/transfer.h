@@ -69,7 +69,10 @@ struct TransferResult {
   double drag_magnitude_sum = 0.0;  // sum_i |eps_g f_d,i| (N), scale for the imbalance
 };
 
-// Drag and fluid forces on particles and the gas sink, by `options.method`.
+// Drag and fluid forces on particles and the gas sink, by `options.method`, into `out` (its
+// storage is reused between coupling steps).
+void transfer(const CellWeights &weights, const ParticleView &particles, const CellGas &cells,
+              const GasAtParticles &at_particles, const TransferOptions &options, TransferResult &out);
 TransferResult transfer(const CellWeights &weights, const ParticleView &particles, const CellGas &cells,
                         const GasAtParticles &at_particles, const TransferOptions &options);
 

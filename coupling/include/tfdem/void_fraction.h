@@ -54,8 +54,11 @@ struct CellWeights {
   std::size_t particle_count() const { return offsets.size() - 1; }
 };
 
-// Weights of `options.method` for particles on `grid`. Throws std::out_of_range naming the
-// first particle whose centre is outside the grid.
+// Weights of `options.method` for particles on `grid`, written into `out` (its storage is
+// reused between coupling steps). Throws std::out_of_range naming the first particle whose
+// centre is outside the grid.
+void compute_weights(const CartesianGrid &grid, const ParticleView &particles,
+                     const VoidFractionOptions &options, CellWeights &out);
 CellWeights compute_weights(const CartesianGrid &grid, const ParticleView &particles,
                             const VoidFractionOptions &options);
 
@@ -71,7 +74,9 @@ struct GasFraction {
   double lowest_unfloored = 1.0;     // smallest 1 - solid_volume / V_cell before the floor
 };
 
-// Solid volume and gas fraction per cell; cell_volume has one entry per cell.
+// Solid volume and gas fraction per cell into `out`; cell_volume has one entry per cell.
+void map_gas_fraction(const CellWeights &weights, const ParticleView &particles,
+                      const std::vector<double> &cell_volume, double floor, GasFraction &out);
 GasFraction map_gas_fraction(const CellWeights &weights, const ParticleView &particles,
                              const std::vector<double> &cell_volume, double floor);
 
