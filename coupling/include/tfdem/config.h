@@ -1,0 +1,103 @@
+// YAML configuration: a checked reader every module uses for its own keys, and the
+// case-level coupling.yaml that gathers them.
+//
+// Every problem in a file is collected (not just the first) and reported at once as
+// "file:line:column: path.to.key: message"; unknown keys name the nearest valid key.
+#ifndef TFDEM_CONFIG_H
+#define TFDEM_CONFIG_H
+
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "tfdem/drag.h"
+#include "tfdem/transfer.h"
+#include "tfdem/void_fraction.h"
+
+namespace YAML {
+class Node;
+}
+
+namespace tfdem {
+
+// All problems found in one configuration file.
+class ConfigError : public std::runtime_error {
+ public:
+  explicit ConfigError(const std::vector<std::string> &problems);
+  const std::vector<std::string> &problems() const { return problems_; }
+
+ private:
+  std::vector<std::string> problems_;
+};
+
+// A mapping in a YAML file with its dotted path; records problems instead of throwing.
+class ConfigSection {
+ public:
+  // The whole document of `file` (its text in `text`); problems go to `problems`.
+  ConfigSection(const std::string &file, const std::string &text, std::vector<std::string> &problems);
+  ~ConfigSection();
+  ConfigSection(ConfigSection &&) noexcept;
+
+  // Sub-mapping `key`; an empty section (all reads give defaults) when absent and optional.
+  ConfigSection section(const std::string &key, bool required = false);
+  // Number in [min, max]; `fallback` when absent and not required.
+  double number(const std::string &key, double fallback, double min, double max, bool required = false);
+  // Whole number in [min, max].
+  long integer(const std::string &key, long fallback, long min, long max, bool required = false);
+  bool boolean(const std::string &key, bool fallback);
+  std::string text(const std::string &key, const std::string &fallback, bool required = false);
+  // Text that must be one of `choices`.
+  std::string choice(const std::string &key, const std::string &fallback, const std::vector<std::string> &choices);
+  // Report keys present but never read, with the nearest read key. Call after all reads.
+  void reject_unknown_keys();
+  bool has(const std::string &key) const;
+  // Record a problem with `key` found by the caller's own check.
+  void report(const std::string &key, const std::string &message) { problem(key, message); }
+  const std::string &path() const { return path_; }
+
+ private:
+  ConfigSection(const std::string &file, std::unique_ptr<YAML::Node> node, std::string path,
+                std::vector<std::string> &problems);
+  void problem(const std::string &key, const std::string &message);
+  std::string where(const std::string &key) const;
+  std::string key_path(const std::string &key) const;
+  std::optional<YAML::Node> child(const std::string &key, bool required);
+
+  std::string file_;
+  std::unique_ptr<YAML::Node> node_;
+  std::string path_;
+  std::vector<std::string> *problems_;
+  std::vector<std::string> known_keys_;
+};
+
+// Module readers: each module owns its keys.
+drag::Gas read_gas(ConfigSection &section);
+VoidFractionOptions read_void_fraction(ConfigSection &section);
+
+// coupling.yaml of a case.
+struct CouplingConfig {
+  std::string file;
+  drag::Gas gas{1.2, 1.8e-5};
+  double particle_diameter = 0.0;  // d_p (m): 2-D cell depth, scene check
+  double particle_density = 0.0;   // rho_p (kg/m^3)
+  std::string dem_script;         // LIGGGHTS input, relative to the case directory
+  long coupling_interval = 1;     // DEM steps per gas step
+  TransferOptions transfer;       // method, drag law, gas
+  VoidFractionOptions void_fraction;
+  bool pressure_gradient_force = true;  // -V_p grad p of eq. 28
+  bool viscous_force = false;           // V_p div tau of eq. 28 (the paper neglects it)
+  bool void_fraction_time_derivative = true;  // d(eps)/dt in gas continuity
+};
+
+// Parse coupling.yaml from text; throws ConfigError listing every problem.
+CouplingConfig parse_coupling_config(const std::string &file, const std::string &text);
+// Read and parse a file; a missing or unreadable file is a ConfigError naming it.
+CouplingConfig load_coupling_config(const std::string &file);
+// The effective configuration, every value including defaults, as YAML.
+std::string describe(const CouplingConfig &config);
+
+}  // namespace tfdem
+
+#endif

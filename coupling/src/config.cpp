@@ -1,0 +1,256 @@
+#include "tfdem/config.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+#include "tfdem/suggest.h"
+
+namespace tfdem {
+namespace {
+
+std::string join_lines(const std::vector<std::string> &lines) {
+  std::string out;
+  for (const auto &l : lines) out += (out.empty() ? "" : "\n") + l;
+  return out;
+}
+
+std::string location(const std::string &file, const YAML::Mark &mark) {
+  if (mark.is_null()) return file;
+  return file + ":" + std::to_string(mark.line + 1) + ":" + std::to_string(mark.column + 1);
+}
+
+std::string format_number(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+}  // namespace
+
+ConfigError::ConfigError(const std::vector<std::string> &problems)
+    : std::runtime_error(join_lines(problems)), problems_(problems) {}
+
+ConfigSection::ConfigSection(const std::string &file, const std::string &text, std::vector<std::string> &problems)
+    : file_(file), node_(std::make_unique<YAML::Node>()), problems_(&problems) {
+  try {
+    *node_ = YAML::Load(text);
+  } catch (const YAML::ParserException &e) {
+    problems.push_back(location(file, e.mark) + ": malformed YAML: " + e.msg);
+    *node_ = YAML::Node(YAML::NodeType::Map);
+    return;
+  }
+  if (node_->IsNull()) {
+    *node_ = YAML::Node(YAML::NodeType::Map);
+  } else if (!node_->IsMap()) {
+    problems.push_back(location(file, node_->Mark()) + ": the file must be a mapping of keys to values");
+    *node_ = YAML::Node(YAML::NodeType::Map);
+  }
+}
+
+ConfigSection::ConfigSection(const std::string &file, std::unique_ptr<YAML::Node> node, std::string path,
+                             std::vector<std::string> &problems)
+    : file_(file), node_(std::move(node)), path_(std::move(path)), problems_(&problems) {}
+
+ConfigSection::~ConfigSection() = default;
+ConfigSection::ConfigSection(ConfigSection &&) noexcept = default;
+
+std::string ConfigSection::key_path(const std::string &key) const { return path_.empty() ? key : path_ + "." + key; }
+
+std::string ConfigSection::where(const std::string &key) const {
+  const YAML::Node &map = *node_;
+  const YAML::Node value = map[key];
+  return location(file_, value ? value.Mark() : node_->Mark());
+}
+
+void ConfigSection::problem(const std::string &key, const std::string &message) {
+  problems_->push_back(where(key) + ": " + key_path(key) + ": " + message);
+}
+
+bool ConfigSection::has(const std::string &key) const {
+  const YAML::Node &map = *node_;
+  return map.IsMap() && map[key];
+}
+
+std::optional<YAML::Node> ConfigSection::child(const std::string &key, bool required) {
+  known_keys_.push_back(key);
+  if (!has(key)) {
+    if (required) problems_->push_back(location(file_, node_->Mark()) + ": " + key_path(key) + ": missing (required)");
+    return std::nullopt;
+  }
+  const YAML::Node &map = *node_;
+  return map[key];
+}
+
+ConfigSection ConfigSection::section(const std::string &key, bool required) {
+  const std::optional<YAML::Node> value = child(key, required);
+  auto node = std::make_unique<YAML::Node>(YAML::NodeType::Map);
+  if (value) {
+    if (value->IsMap())
+      node->reset(*value);
+    else
+      problem(key, "must be a mapping of keys to values");
+  }
+  return ConfigSection(file_, std::move(node), key_path(key), *problems_);
+}
+
+double ConfigSection::number(const std::string &key, double fallback, double min, double max, bool required) {
+  const std::optional<YAML::Node> value = child(key, required);
+  if (!value) return fallback;
+  double v;
+  try {
+    v = value->as<double>();
+  } catch (const YAML::Exception &) {
+    problem(key, "must be a number, got '" + (value->IsScalar() ? value->Scalar() : std::string("a collection")) + "'");
+    return fallback;
+  }
+  if (!(v >= min && v <= max) || std::isnan(v)) {
+    problem(key, "value " + format_number(v) + " is out of range [" + format_number(min) + ", " + format_number(max) + "]");
+    return fallback;
+  }
+  return v;
+}
+
+long ConfigSection::integer(const std::string &key, long fallback, long min, long max, bool required) {
+  const std::optional<YAML::Node> value = child(key, required);
+  if (!value) return fallback;
+  long v;
+  try {
+    v = value->as<long>();
+  } catch (const YAML::Exception &) {
+    problem(key, "must be a whole number, got '" + (value->IsScalar() ? value->Scalar() : std::string("a collection")) + "'");
+    return fallback;
+  }
+  if (v < min || v > max) {
+    problem(key, "value " + std::to_string(v) + " is out of range [" + std::to_string(min) + ", " + std::to_string(max) + "]");
+    return fallback;
+  }
+  return v;
+}
+
+bool ConfigSection::boolean(const std::string &key, bool fallback) {
+  const std::optional<YAML::Node> value = child(key, false);
+  if (!value) return fallback;
+  try {
+    return value->as<bool>();
+  } catch (const YAML::Exception &) {
+    problem(key, "must be true or false, got '" + (value->IsScalar() ? value->Scalar() : std::string("a collection")) + "'");
+    return fallback;
+  }
+}
+
+std::string ConfigSection::text(const std::string &key, const std::string &fallback, bool required) {
+  const std::optional<YAML::Node> value = child(key, required);
+  if (!value) return fallback;
+  if (!value->IsScalar()) {
+    problem(key, "must be a single value");
+    return fallback;
+  }
+  return value->Scalar();
+}
+
+std::string ConfigSection::choice(const std::string &key, const std::string &fallback,
+                                  const std::vector<std::string> &choices) {
+  const std::string v = text(key, fallback);
+  if (std::find(choices.begin(), choices.end(), v) != choices.end()) return v;
+  problem(key, "unknown value '" + v + "'" + did_you_mean(v, choices) + "; valid: " + quoted_list(choices));
+  return fallback;
+}
+
+void ConfigSection::reject_unknown_keys() {
+  if (!node_->IsMap()) return;
+  for (const auto &entry : *node_) {
+    const std::string key = entry.first.as<std::string>();
+    if (std::find(known_keys_.begin(), known_keys_.end(), key) != known_keys_.end()) continue;
+    problems_->push_back(location(file_, entry.first.Mark()) + ": " + key_path(key) + ": unknown key" +
+                         did_you_mean(key, known_keys_) + "; valid keys here: " + quoted_list(known_keys_));
+  }
+}
+
+drag::Gas read_gas(ConfigSection &section) {
+  drag::Gas gas;
+  gas.density = section.number("density", 1.2, 1e-6, 1e4);
+  gas.viscosity = section.number("viscosity", 1.8e-5, 1e-9, 1e3);
+  section.reject_unknown_keys();
+  return gas;
+}
+
+VoidFractionOptions read_void_fraction(ConfigSection &section) {
+  VoidFractionOptions o;
+  o.method = void_fraction_method_from_name(section.choice("method", "centroid", void_fraction_method_names()));
+  o.cube_factor = section.number("cube_factor", 1.0, minimum_cube_factor(), 10.0);
+  o.divided_points_per_diameter = static_cast<int>(section.integer("divided_points_per_diameter", 6, 2, 64));
+  o.two_dimensional = section.boolean("two_dimensional", false);
+  o.gas_fraction_floor = section.number("floor", 0.0, 0.0, 1.0);
+  if (o.gas_fraction_floor >= 1.0) {
+    section.report("floor", "value 1 leaves no room for particles: the floor must be below 1 (e.g. 0.3)");
+    o.gas_fraction_floor = 0.0;
+  }
+  section.reject_unknown_keys();
+  return o;
+}
+
+CouplingConfig parse_coupling_config(const std::string &file, const std::string &text) {
+  std::vector<std::string> problems;
+  ConfigSection root(file, text, problems);
+  if (!problems.empty()) throw ConfigError(problems);  // unparsable: nothing else to check
+  CouplingConfig c;
+  c.file = file;
+  ConfigSection gas = root.section("gas", true);
+  c.gas = read_gas(gas);
+  ConfigSection particles = root.section("particles", true);
+  c.particle_diameter = particles.number("diameter", 0.0, 1e-9, 1.0, true);
+  c.particle_density = particles.number("density", 0.0, 1e-3, 1e5, true);
+  particles.reject_unknown_keys();
+  ConfigSection dem = root.section("dem", true);
+  c.dem_script = dem.text("script", "", true);
+  c.coupling_interval = dem.integer("coupling_interval", 1, 1, 1000000);
+  dem.reject_unknown_keys();
+  ConfigSection coupling = root.section("coupling");
+  c.transfer.method = transfer_method_from_name(coupling.choice("transfer", "averaged", transfer_method_names()));
+  c.transfer.law = drag::law_from_name(coupling.choice("drag_law", "ergun_wen_yu", drag::law_names()));
+  c.transfer.gas = c.gas;
+  c.pressure_gradient_force = coupling.boolean("pressure_gradient_force", true);
+  c.viscous_force = coupling.boolean("viscous_force", false);
+  c.void_fraction_time_derivative = coupling.boolean("void_fraction_time_derivative", true);
+  ConfigSection void_fraction = coupling.section("void_fraction");
+  c.void_fraction = read_void_fraction(void_fraction);
+  coupling.reject_unknown_keys();
+  root.reject_unknown_keys();
+  if (!problems.empty()) throw ConfigError(problems);
+  return c;
+}
+
+CouplingConfig load_coupling_config(const std::string &file) {
+  std::ifstream in(file);
+  if (!in) throw ConfigError({file + ": cannot open the coupling configuration (missing or unreadable)"});
+  std::stringstream text;
+  text << in.rdbuf();
+  return parse_coupling_config(file, text.str());
+}
+
+std::string describe(const CouplingConfig &c) {
+  std::ostringstream s;
+  s.precision(10);
+  s << "# effective coupling configuration (" << c.file << ")\n"
+    << "gas:\n  density: " << c.gas.density << "\n  viscosity: " << c.gas.viscosity << "\n"
+    << "particles:\n  diameter: " << c.particle_diameter << "\n  density: " << c.particle_density << "\n"
+    << "dem:\n  script: " << c.dem_script << "\n  coupling_interval: " << c.coupling_interval << "\n"
+    << "coupling:\n  transfer: " << transfer_method_names()[static_cast<int>(c.transfer.method)] << "\n"
+    << "  drag_law: " << drag::law_name(c.transfer.law) << "\n"
+    << "  pressure_gradient_force: " << (c.pressure_gradient_force ? "true" : "false") << "\n"
+    << "  viscous_force: " << (c.viscous_force ? "true" : "false") << "\n"
+    << "  void_fraction_time_derivative: " << (c.void_fraction_time_derivative ? "true" : "false") << "\n"
+    << "  void_fraction:\n    method: " << void_fraction_method_names()[static_cast<int>(c.void_fraction.method)] << "\n"
+    << "    cube_factor: " << c.void_fraction.cube_factor << "\n"
+    << "    divided_points_per_diameter: " << c.void_fraction.divided_points_per_diameter << "\n"
+    << "    two_dimensional: " << (c.void_fraction.two_dimensional ? "true" : "false") << "\n"
+    << "    floor: " << c.void_fraction.gas_fraction_floor << "\n";
+  return s.str();
+}
+
+}  // namespace tfdem

@@ -1,0 +1,134 @@
+// coupling.yaml parsing: every problem reported at once with file, line, key path and fix.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "tfdem/config.h"
+
+namespace {
+
+using namespace tfdem;
+
+const char *kValid = R"(gas:
+  density: 1.2
+  viscosity: 1.8e-5
+particles:
+  diameter: 0.0025
+  density: 2526
+dem:
+  script: in.bed
+  coupling_interval: 50
+coupling:
+  transfer: per_particle
+  drag_law: beetstra
+  void_fraction:
+    method: porous_cube
+    cube_factor: 1.2
+    two_dimensional: true
+    floor: 0.3
+)";
+
+std::vector<std::string> problems_of(const std::string &text) {
+  try {
+    parse_coupling_config("case/coupling.yaml", text);
+  } catch (const ConfigError &e) {
+    return e.problems();
+  }
+  return {};
+}
+
+bool contains(const std::vector<std::string> &problems, const std::string &text) {
+  for (const auto &p : problems)
+    if (p.find(text) != std::string::npos) return true;
+  return false;
+}
+
+std::string replaced(std::string text, const std::string &from, const std::string &to) {
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return text.replace(at, from.size(), to);
+}
+
+TEST(Config, ValidFileGivesTypedValues) {
+  const CouplingConfig c = parse_coupling_config("coupling.yaml", kValid);
+  EXPECT_DOUBLE_EQ(c.gas.viscosity, 1.8e-5);
+  EXPECT_DOUBLE_EQ(c.particle_diameter, 0.0025);
+  EXPECT_EQ(c.dem_script, "in.bed");
+  EXPECT_EQ(c.coupling_interval, 50);
+  EXPECT_EQ(c.transfer.method, TransferMethod::PerParticle);
+  EXPECT_EQ(c.transfer.law, drag::Law::Beetstra);
+  EXPECT_DOUBLE_EQ(c.transfer.gas.density, 1.2);
+  EXPECT_EQ(c.void_fraction.method, VoidFractionMethod::PorousCube);
+  EXPECT_DOUBLE_EQ(c.void_fraction.cube_factor, 1.2);
+  EXPECT_TRUE(c.void_fraction.two_dimensional);
+  EXPECT_DOUBLE_EQ(c.void_fraction.gas_fraction_floor, 0.3);
+  EXPECT_TRUE(c.pressure_gradient_force);
+  EXPECT_FALSE(c.viscous_force);
+}
+
+TEST(Config, DescribeRoundTrips) {
+  const CouplingConfig c = parse_coupling_config("coupling.yaml", kValid);
+  const std::string text = describe(c);
+  const CouplingConfig again = parse_coupling_config("described.yaml", text);
+  EXPECT_EQ(describe(again).substr(describe(again).find('\n')), text.substr(text.find('\n')));
+}
+
+TEST(Config, MalformedYamlNamesLine) {
+  const auto p = problems_of("gas:\n  density: [1.2\nparticles: {}\n");
+  ASSERT_EQ(p.size(), 1u);
+  EXPECT_TRUE(contains(p, "case/coupling.yaml:3:10: malformed YAML: end of sequence flow not found")) << p[0];
+}
+
+TEST(Config, MissingRequiredKeysAreAllReported) {
+  const auto p = problems_of("gas:\n  density: 1.2\n");
+  EXPECT_TRUE(contains(p, "particles: missing (required)"));
+  EXPECT_TRUE(contains(p, "dem: missing (required)"));
+  const auto q = problems_of(replaced(kValid, "  script: in.bed\n", ""));
+  ASSERT_EQ(q.size(), 1u);
+  EXPECT_TRUE(contains(q, "dem.script: missing (required)")) << q[0];
+}
+
+TEST(Config, UnknownKeysSuggestNearestAndGiveLine) {
+  const auto p = problems_of(replaced(kValid, "    cube_factor: 1.2", "    cube_factr: 1.2"));
+  ASSERT_EQ(p.size(), 1u);
+  EXPECT_TRUE(contains(p, "case/coupling.yaml:15:5: coupling.void_fraction.cube_factr: unknown key (did you mean 'cube_factor'?)")) << p[0];
+  const auto q = problems_of(std::string(kValid) + "gass:\n  density: 1\n");
+  EXPECT_TRUE(contains(q, "gass: unknown key (did you mean 'gas'?)")) << q[0];
+}
+
+TEST(Config, WrongTypesAreReported) {
+  const auto p = problems_of(replaced(replaced(kValid, "density: 1.2", "density: heavy"), "two_dimensional: true",
+                                      "two_dimensional: maybe"));
+  ASSERT_EQ(p.size(), 2u);
+  EXPECT_TRUE(contains(p, "case/coupling.yaml:2:12: gas.density: must be a number, got 'heavy'")) << p[0];
+  EXPECT_TRUE(contains(p, "coupling.void_fraction.two_dimensional: must be true or false, got 'maybe'")) << p[1];
+  const auto q = problems_of(replaced(kValid, "coupling_interval: 50", "coupling_interval: 2.5"));
+  EXPECT_TRUE(contains(q, "dem.coupling_interval: must be a whole number, got '2.5'")) << q[0];
+}
+
+TEST(Config, OutOfRangeValuesAreReported) {
+  const auto p = problems_of(replaced(replaced(kValid, "diameter: 0.0025", "diameter: -0.0025"), "floor: 0.3", "floor: 1"));
+  ASSERT_EQ(p.size(), 2u);
+  EXPECT_TRUE(contains(p, "particles.diameter: value -0.0025 is out of range [1e-09, 1]"));
+  EXPECT_TRUE(contains(p, "coupling.void_fraction.floor: value 1 leaves no room for particles"));
+  const auto q = problems_of(replaced(kValid, "cube_factor: 1.2", "cube_factor: 0.7"));
+  EXPECT_TRUE(contains(q, "coupling.void_fraction.cube_factor: value 0.7 is out of range [0.805996")) << q[0];
+}
+
+TEST(Config, UnknownChoicesListValidOnes) {
+  const auto p = problems_of(replaced(kValid, "drag_law: beetstra", "drag_law: wen_yu"));
+  ASSERT_EQ(p.size(), 1u);
+  EXPECT_TRUE(contains(p, "coupling.drag_law: unknown value 'wen_yu'")) << p[0];
+  EXPECT_TRUE(contains(p, "'ergun_wen_yu'")) << p[0];
+}
+
+TEST(Config, MissingFileIsNamed) {
+  try {
+    load_coupling_config("/nonexistent/coupling.yaml");
+    FAIL();
+  } catch (const ConfigError &e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/coupling.yaml: cannot open"), std::string::npos);
+  }
+}
+
+}  // namespace
