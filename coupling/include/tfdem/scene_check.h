@@ -1,0 +1,69 @@
+// Scene check: the dimensionless numbers of a gas-particle scene and the models, time steps
+// and void-fraction method it needs ("model only what a scene needs").
+#ifndef TFDEM_SCENE_CHECK_H
+#define TFDEM_SCENE_CHECK_H
+
+#include <string>
+#include <vector>
+
+#include "tfdem/drag.h"
+
+namespace tfdem {
+
+struct Scene {
+  double particle_diameter = 0.0;      // d_p (m)
+  double particle_density = 0.0;       // rho_p (kg/m^3)
+  drag::Gas gas{1.2, 1.8e-5};
+  double gravity = 9.81;               // |g| (m/s^2)
+  double gas_velocity = 0.0;           // characteristic (superficial inflow) gas velocity (m/s)
+  double cell_size = 0.0;              // smallest in-plane cell size (m)
+  double normal_stiffness = 0.0;       // k_n (N/m)
+  double normal_damping = 0.0;         // eta_n, absolute (N s/m)
+  double dem_time_step = 0.0;          // (s)
+  long coupling_interval = 1;          // DEM steps per gas step
+  drag::Law drag_law = drag::Law::ErgunWenYu;
+  double packed_gas_fraction = 0.4;    // eps_g of the settled bed
+};
+
+struct SceneNumbers {
+  double relaxation_time;         // tau_p = rho_p d^2 / (18 mu) (seed 000 after eq. 36)
+  double stokes;                  // St = tau_p / (d / v_g) (seed 000 eq. 36)
+  double reynolds;                // Re_p = rho_g v_g d / mu
+  double archimedes;              // Ar = rho_g (rho_p - rho_g) g d^3 / mu^2
+  double minimum_fluidization;    // U_mf (Wen-Yu): Re_mf = sqrt(33.7^2 + 0.0408 Ar) - 33.7
+  double terminal_velocity;       // single sphere, C_D of seed 000 eq. 31 (0.44 above Re 1000)
+  double contact_time;            // t_c of seed 000 eq. 26, particle-particle
+  double restitution;             // e_n of seed 000 eq. 25
+  double recommended_time_step;   // t_c / 50 (seed 000 after eq. 26)
+  double dense_drag_time;         // rho_p eps_s / beta in the packed bed at U_mf: drag response time
+  double coupling_time;           // coupling_interval * dem_time_step
+  double cell_to_particle;        // cell_size / d_p
+};
+
+struct Finding {
+  enum class Level { Ok, Advice, Error } level;
+  std::string topic;
+  std::string text;
+};
+
+struct SceneReport {
+  SceneNumbers numbers;
+  std::vector<Finding> findings;
+  bool has_errors() const;
+};
+
+// Minimum fluidization velocity by Wen and Yu (1966).
+double minimum_fluidization_velocity(double diameter, double particle_density, const drag::Gas &gas, double gravity);
+// Terminal velocity of a lone sphere with the standard drag curve (Schiller-Naumann below
+// Re = 1000, C_D = 0.44 above), found by bisection to 1e-12 relative.
+double terminal_velocity(double diameter, double particle_density, const drag::Gas &gas, double gravity);
+
+// Numbers and findings for `scene`; throws std::invalid_argument on non-positive inputs.
+SceneReport check_scene(const Scene &scene);
+
+// Human-readable report.
+std::string format_report(const SceneReport &report);
+
+}  // namespace tfdem
+
+#endif

@@ -1,0 +1,184 @@
+#include "tfdem/scene_check.h"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "tfdem/contact.h"
+#include "tfdem/particles.h"
+
+namespace tfdem {
+namespace {
+
+// Steps per contact for an accurate contact (seed 000 after eq. 26: dt <= t_c/50).
+constexpr double kStepsPerContact = 50.0;
+// Fewer steps per contact than this is an error: the contact is not resolved.
+constexpr double kMinimumStepsPerContact = 10.0;
+// Cells narrower than this many diameters make the centroid void fraction unsafe.
+constexpr double kCentroidCellsPerDiameter = 3.0;
+// Explicit drag is stable while the drag response time exceeds this many coupling times.
+constexpr double kDragResponseToCoupling = 2.0;
+
+void require(double value, const char *name) {
+  if (!(value > 0.0)) throw std::invalid_argument(std::string("scene check: ") + name + " must be > 0");
+}
+
+// Net weight minus drag of a sphere falling at u (N per unit of the common factor).
+double fall_balance(double u, double d, double rho_p, const drag::Gas &gas, double g) {
+  const double re = gas.density * u * d / gas.viscosity;
+  const double cd = drag::drag_coefficient(re, 0.44);
+  return (rho_p - gas.density) * g * sphere_volume(d) - 0.5 * cd * gas.density * kPi * d * d / 4.0 * u * u;
+}
+
+void add(SceneReport &r, Finding::Level level, const std::string &topic, const std::string &text) {
+  r.findings.push_back({level, topic, text});
+}
+
+std::string num(double v) {
+  std::ostringstream s;
+  s.precision(4);
+  s << v;
+  return s.str();
+}
+
+void time_step_findings(const Scene &s, SceneReport &r) {
+  const SceneNumbers &n = r.numbers;
+  if (s.dem_time_step > n.contact_time / kMinimumStepsPerContact)
+    add(r, Finding::Level::Error, "DEM time step",
+        "dt = " + num(s.dem_time_step) + " s is above t_c/10 = " + num(n.contact_time / kMinimumStepsPerContact) +
+            " s: contacts are not resolved; use dt <= t_c/50 = " + num(n.recommended_time_step) + " s");
+  else if (s.dem_time_step > n.recommended_time_step)
+    add(r, Finding::Level::Advice, "DEM time step",
+        "dt = " + num(s.dem_time_step) + " s resolves a contact with " + num(n.contact_time / s.dem_time_step) +
+            " steps; seed 000 recommends >= 50 (dt <= " + num(n.recommended_time_step) + " s)");
+  else
+    add(r, Finding::Level::Ok, "DEM time step", num(n.contact_time / s.dem_time_step) + " steps per contact");
+}
+
+void void_fraction_findings(SceneReport &r) {
+  const double ratio = r.numbers.cell_to_particle;
+  if (ratio < 1.0)
+    add(r, Finding::Level::Advice, "void fraction",
+        "cells are smaller than particles (" + num(ratio) +
+            " d_p): use porous_cube (seed 001 eq. 34-37) with a floor; centroid and divided over-fill cells");
+  else if (ratio < kCentroidCellsPerDiameter)
+    add(r, Finding::Level::Advice, "void fraction",
+        "cells are " + num(ratio) + " d_p wide: centroid void fraction is noisy and may over-fill cells; "
+        "use porous_cube or divided");
+  else
+    add(r, Finding::Level::Ok, "void fraction", "cells are " + num(ratio) + " d_p wide: centroid is adequate");
+}
+
+void drag_findings(SceneReport &r) {
+  const SceneNumbers &n = r.numbers;
+  if (n.dense_drag_time < kDragResponseToCoupling * n.coupling_time)
+    add(r, Finding::Level::Advice, "drag coupling",
+        "drag response time in the packed bed " + num(n.dense_drag_time) + " s is below twice the coupling time " +
+            num(n.coupling_time) + " s: couple more often or treat drag implicitly");
+  else
+    add(r, Finding::Level::Ok, "drag coupling",
+        "drag response time " + num(n.dense_drag_time) + " s >> coupling time " + num(n.coupling_time) +
+            " s: explicit particle drag per coupling interval is stable");
+}
+
+void gas_findings(SceneReport &r) {
+  const SceneNumbers &n = r.numbers;
+  if (n.stokes > 100.0)
+    add(r, Finding::Level::Ok, "gas turbulence",
+        "St = " + num(n.stokes) + " >> 1: particles do not follow small gas eddies; laminar gas (no subgrid "
+        "turbulence model) is what seed 000 uses");
+  else
+    add(r, Finding::Level::Advice, "gas turbulence",
+        "St = " + num(n.stokes) + ": particles respond to gas fluctuations; consider a turbulence model");
+  add(r, Finding::Level::Ok, "fluid forces",
+      "pressure-gradient force on (bed weight is carried by grad p); viscous-stress force negligible at "
+      "Re_p = " + num(n.reynolds) + " (seed 000 neglects it)");
+}
+
+}  // namespace
+
+bool SceneReport::has_errors() const {
+  for (const auto &f : findings)
+    if (f.level == Finding::Level::Error) return true;
+  return false;
+}
+
+double minimum_fluidization_velocity(double d, double rho_p, const drag::Gas &gas, double g) {
+  const double ar = gas.density * (rho_p - gas.density) * g * d * d * d / (gas.viscosity * gas.viscosity);
+  const double re_mf = std::sqrt(33.7 * 33.7 + 0.0408 * ar) - 33.7;
+  return re_mf * gas.viscosity / (gas.density * d);
+}
+
+double terminal_velocity(double d, double rho_p, const drag::Gas &gas, double g) {
+  double lo = 0.0, hi = 1.0;
+  while (fall_balance(hi, d, rho_p, gas, g) > 0.0) hi *= 2.0;
+  for (int i = 0; i < 200 && hi - lo > 1e-12 * hi; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (mid > 0.0 && fall_balance(mid, d, rho_p, gas, g) > 0.0 ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+SceneReport check_scene(const Scene &s) {
+  require(s.particle_diameter, "particle diameter");
+  require(s.particle_density, "particle density");
+  require(s.gas.density, "gas density");
+  require(s.gas.viscosity, "gas viscosity");
+  require(s.gravity, "gravity");
+  require(s.gas_velocity, "gas velocity");
+  require(s.cell_size, "cell size");
+  require(s.normal_stiffness, "normal stiffness");
+  require(s.dem_time_step, "DEM time step");
+  if (s.coupling_interval < 1) throw std::invalid_argument("scene check: coupling interval must be >= 1");
+  const double d = s.particle_diameter, mu = s.gas.viscosity;
+  const double m = contact::sphere_mass(d, s.particle_density);
+  const double m_eff = contact::effective_mass(m, m);
+  SceneReport r;
+  SceneNumbers &n = r.numbers;
+  n.relaxation_time = s.particle_density * d * d / (18.0 * mu);
+  n.stokes = n.relaxation_time / (d / s.gas_velocity);
+  n.reynolds = s.gas.density * s.gas_velocity * d / mu;
+  n.archimedes = s.gas.density * (s.particle_density - s.gas.density) * s.gravity * d * d * d / (mu * mu);
+  n.minimum_fluidization = minimum_fluidization_velocity(d, s.particle_density, s.gas, s.gravity);
+  n.terminal_velocity = terminal_velocity(d, s.particle_density, s.gas, s.gravity);
+  n.contact_time = contact::contact_time_from_damping(s.normal_stiffness, s.normal_damping, m_eff);
+  n.restitution = contact::restitution_from_damping(s.normal_stiffness, s.normal_damping, m_eff);
+  n.recommended_time_step = contact::recommended_time_step(n.contact_time, kStepsPerContact);
+  const double eps_s = 1.0 - s.packed_gas_fraction;
+  const double slip = n.minimum_fluidization / s.packed_gas_fraction;
+  n.dense_drag_time = s.particle_density * eps_s /
+                      drag::beta(s.drag_law, {s.packed_gas_fraction, d, slip}, s.gas);
+  n.coupling_time = s.coupling_interval * s.dem_time_step;
+  n.cell_to_particle = s.cell_size / d;
+  time_step_findings(s, r);
+  void_fraction_findings(r);
+  drag_findings(r);
+  gas_findings(r);
+  return r;
+}
+
+std::string format_report(const SceneReport &r) {
+  const SceneNumbers &n = r.numbers;
+  std::ostringstream s;
+  s << "Scene numbers\n"
+    << "  particle relaxation time tau_p   " << num(n.relaxation_time) << " s\n"
+    << "  Stokes number St (seed 000 eq.36) " << num(n.stokes) << "\n"
+    << "  particle Reynolds number Re_p     " << num(n.reynolds) << "\n"
+    << "  Archimedes number Ar              " << num(n.archimedes) << "\n"
+    << "  U_mf (Wen-Yu)                     " << num(n.minimum_fluidization) << " m/s\n"
+    << "  terminal velocity u_t             " << num(n.terminal_velocity) << " m/s\n"
+    << "  contact time t_c (eq. 26)         " << num(n.contact_time) << " s\n"
+    << "  restitution e_n (eq. 25)          " << num(n.restitution) << "\n"
+    << "  recommended DEM step t_c/50       " << num(n.recommended_time_step) << " s\n"
+    << "  drag response time (packed bed)   " << num(n.dense_drag_time) << " s\n"
+    << "  coupling time                     " << num(n.coupling_time) << " s\n"
+    << "  cell size / particle diameter     " << num(n.cell_to_particle) << "\n"
+    << "What the scene needs\n";
+  for (const auto &f : r.findings) {
+    const char *tag = f.level == Finding::Level::Ok ? "ok    " : f.level == Finding::Level::Advice ? "advice" : "ERROR ";
+    s << "  [" << tag << "] " << f.topic << ": " << f.text << "\n";
+  }
+  return s.str();
+}
+
+}  // namespace tfdem

@@ -1,0 +1,104 @@
+// Scene check: seed 000 eq. 25-26 and 36, Wen-Yu U_mf, terminal velocity, findings.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "tfdem/scene_check.h"
+
+namespace {
+
+using namespace tfdem;
+
+// Seed 000 Table 1, uniform-inflow bed (SI): d = 2.5 mm, rho = 2526, k_n = 800 N/m,
+// eta_n = 0.00177 N s/m, inflow 1.5 U_mf = 1.5 * 1.28 m/s, cells 1 cm.
+Scene uniform_bed() {
+  Scene s;
+  s.particle_diameter = 0.0025;
+  s.particle_density = 2526.0;
+  s.gas = {1.2, 1.8e-5};
+  s.gas_velocity = 1.5 * 1.28;
+  s.cell_size = 0.01;
+  s.normal_stiffness = 800.0;
+  s.normal_damping = 0.00177;
+  s.dem_time_step = 5e-6;
+  s.coupling_interval = 20;
+  return s;
+}
+
+bool has_finding(const SceneReport &r, Finding::Level level, const std::string &topic) {
+  for (const auto &f : r.findings)
+    if (f.level == level && f.topic == topic) return true;
+  return false;
+}
+
+// Seed 000 after eq. 36 quotes St ~ 37,422 for the uniform-inflow case.
+TEST(SceneCheck, StokesNumberOfUniformBedMatchesPaper) {
+  const SceneReport r = check_scene(uniform_bed());
+  const double tau_p = 2526.0 * 0.0025 * 0.0025 / (18.0 * 1.8e-5);
+  EXPECT_NEAR(r.numbers.relaxation_time, tau_p, 1e-12 * tau_p);
+  EXPECT_NEAR(r.numbers.stokes, 37422.0, 1.0);
+}
+
+// Wen-Yu U_mf against seed 000 Table 1 (1.28 and 1.80 m/s): within 3 %, the spread of the
+// correlation against the paper's values (which come from the experiments).
+TEST(SceneCheck, MinimumFluidizationNearPaperTable) {
+  const drag::Gas air{1.2, 1.8e-5};
+  const double ar = 1.2 * (2526.0 - 1.2) * 9.81 * std::pow(0.0025, 3) / (1.8e-5 * 1.8e-5);
+  const double expected = (std::sqrt(33.7 * 33.7 + 0.0408 * ar) - 33.7) * 1.8e-5 / (1.2 * 0.0025);
+  EXPECT_NEAR(minimum_fluidization_velocity(0.0025, 2526.0, air, 9.81), expected, 1e-12);
+  EXPECT_NEAR(minimum_fluidization_velocity(0.0025, 2526.0, air, 9.81) / 1.28, 1.0, 0.03);
+  EXPECT_NEAR(minimum_fluidization_velocity(0.004, 2700.0, air, 9.81) / 1.80, 1.0, 0.03);
+}
+
+// Terminal velocity: the force balance holds to 1e-10, and a 20 um sphere (Re ~ 0.01) falls at
+// the Stokes velocity (rho_p - rho_g) g d^2 / (18 mu) within the Schiller-Naumann correction.
+TEST(SceneCheck, TerminalVelocityBalancesWeightAndDrag) {
+  const drag::Gas air{1.2, 1.8e-5};
+  const double d = 0.0025, rho = 2526.0;
+  const double u = terminal_velocity(d, rho, air, 9.81);
+  const double re = 1.2 * u * d / 1.8e-5;
+  const double cd = re < 1000 ? 24.0 / re * (1.0 + 0.15 * std::pow(re, 0.687)) : 0.44;
+  const double weight = (rho - 1.2) * 9.81 * 3.14159265358979323846 * d * d * d / 6.0;
+  const double drag = 0.5 * cd * 1.2 * 3.14159265358979323846 * d * d / 4.0 * u * u;
+  EXPECT_NEAR(drag / weight, 1.0, 1e-10);
+  const double small = 20e-6;
+  const double stokes = (rho - 1.2) * 9.81 * small * small / (18.0 * 1.8e-5);
+  const double u_small = terminal_velocity(small, rho, air, 9.81);
+  const double re_small = 1.2 * u_small * small / 1.8e-5;
+  EXPECT_NEAR(u_small * (1.0 + 0.15 * std::pow(re_small, 0.687)) / stokes, 1.0, 1e-9);
+}
+
+TEST(SceneCheck, ContactNumbersOfUniformBed) {
+  const SceneReport r = check_scene(uniform_bed());
+  EXPECT_NEAR(r.numbers.restitution, 0.97, 0.005);
+  EXPECT_NEAR(r.numbers.recommended_time_step, r.numbers.contact_time / 50.0, 1e-18);
+  EXPECT_NEAR(r.numbers.cell_to_particle, 4.0, 1e-12);
+  EXPECT_TRUE(has_finding(r, Finding::Level::Ok, "DEM time step"));
+  EXPECT_TRUE(has_finding(r, Finding::Level::Ok, "void fraction"));
+  EXPECT_FALSE(r.has_errors());
+}
+
+TEST(SceneCheck, FlagsTooLargeTimeStepAndSmallCells) {
+  Scene s = uniform_bed();
+  s.dem_time_step = 1e-4;  // t_c ~ 3.6e-4 s: under 10 steps per contact
+  s.cell_size = 0.002;
+  const SceneReport r = check_scene(s);
+  EXPECT_TRUE(r.has_errors());
+  EXPECT_TRUE(has_finding(r, Finding::Level::Error, "DEM time step"));
+  EXPECT_TRUE(has_finding(r, Finding::Level::Advice, "void fraction"));
+  EXPECT_NE(format_report(r).find("[ERROR ] DEM time step"), std::string::npos);
+}
+
+TEST(SceneCheck, FlagsCouplingIntervalLongerThanDragResponse) {
+  Scene s = uniform_bed();
+  s.coupling_interval = 100000;
+  EXPECT_TRUE(has_finding(check_scene(s), Finding::Level::Advice, "drag coupling"));
+}
+
+TEST(SceneCheck, RejectsNonPositiveInput) {
+  Scene s = uniform_bed();
+  s.particle_diameter = -1.0;
+  EXPECT_THROW(check_scene(s), std::invalid_argument);
+}
+
+}  // namespace
