@@ -1,0 +1,156 @@
+#include "tfdem/analysis.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <unordered_map>
+
+namespace tfdem::analysis {
+namespace {
+
+double norm3(const double *v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
+
+// Key of an integer bin triple for the hash grid.
+long long bin_key(long long i, long long j, long long k) {
+  constexpr long long kSpan = 1 << 20;
+  return (i + kSpan / 2) + kSpan * ((j + kSpan / 2) + kSpan * (k + kSpan / 2));
+}
+
+bool touching(const ParticleView &p, std::size_t a, std::size_t b) {
+  const double *x = p.position + 3 * a, *y = p.position + 3 * b;
+  const double dx = x[0] - y[0], dy = x[1] - y[1], dz = x[2] - y[2];
+  const double reach = 0.5 * (p.diameter[a] + p.diameter[b]);
+  return dx * dx + dy * dy + dz * dz < reach * reach;
+}
+
+}  // namespace
+
+std::vector<std::pair<std::size_t, std::size_t>> contact_pairs(const ParticleView &p) {
+  std::vector<std::pair<std::size_t, std::size_t>> pairs;
+  if (p.count == 0) return pairs;
+  const double bin = *std::max_element(p.diameter, p.diameter + p.count);
+  std::unordered_map<long long, std::vector<std::size_t>> bins;
+  std::vector<long long> ijk(3 * p.count);
+  for (std::size_t i = 0; i < p.count; ++i) {
+    for (int a = 0; a < 3; ++a) ijk[3 * i + a] = static_cast<long long>(std::floor(p.position[3 * i + a] / bin));
+    bins[bin_key(ijk[3 * i], ijk[3 * i + 1], ijk[3 * i + 2])].push_back(i);
+  }
+  for (std::size_t i = 0; i < p.count; ++i)
+    for (int di = -1; di <= 1; ++di)
+      for (int dj = -1; dj <= 1; ++dj)
+        for (int dk = -1; dk <= 1; ++dk) {
+          const auto found = bins.find(bin_key(ijk[3 * i] + di, ijk[3 * i + 1] + dj, ijk[3 * i + 2] + dk));
+          if (found == bins.end()) continue;
+          for (std::size_t j : found->second)
+            if (j > i && touching(p, i, j)) pairs.emplace_back(i, j);
+        }
+  return pairs;
+}
+
+std::vector<int> coordination_numbers(std::size_t n, const std::vector<std::pair<std::size_t, std::size_t>> &pairs) {
+  std::vector<int> nc(n, 0);
+  for (const auto &[i, j] : pairs) {
+    ++nc.at(i);
+    ++nc.at(j);
+  }
+  return nc;
+}
+
+double bulk_coordination_number(const std::vector<int> &nc) {
+  if (nc.empty()) return 0.0;
+  double sum = 0.0;
+  for (int c : nc) sum += c;
+  return sum / nc.size();
+}
+
+double multicontact_ratio(const std::vector<int> &nc) {
+  const auto in_contact = std::count_if(nc.begin(), nc.end(), [](int c) { return c >= 1; });
+  const auto multi = std::count_if(nc.begin(), nc.end(), [](int c) { return c > 1; });
+  return in_contact == 0 ? 0.0 : static_cast<double>(multi) / in_contact;
+}
+
+double mean_height(const ParticleView &p, int axis, double base) {
+  if (p.count == 0) return 0.0;
+  double sum = 0.0;
+  for (std::size_t i = 0; i < p.count; ++i) sum += p.position[3 * i + axis] - base;
+  return sum / p.count;
+}
+
+ForceMaps force_maps(const ParticleView &p, const int *cell_of_particle, std::size_t cell_count,
+                     const double *contact_force, const double *drag_force, double gravity) {
+  ForceMaps m;
+  m.contact.assign(cell_count, 0.0);
+  m.drag.assign(cell_count, 0.0);
+  for (std::size_t i = 0; i < p.count; ++i) {
+    const int c = cell_of_particle[i];
+    if (c < 0 || static_cast<std::size_t>(c) >= cell_count) throw std::out_of_range("force_maps: particle in no cell");
+    const double weight = sphere_volume(p.diameter[i]) * p.density[i] * gravity;
+    m.contact[c] += norm3(contact_force + 3 * i) / weight;
+    m.drag[c] += norm3(drag_force + 3 * i) / weight;
+  }
+  m.ratio.resize(cell_count);
+  for (std::size_t c = 0; c < cell_count; ++c) m.ratio[c] = m.drag[c] > 0.0 ? m.contact[c] / m.drag[c] : -1.0;
+  return m;
+}
+
+double segregation_degree(const ParticleView &p, const std::vector<bool> &is_large, int axis, double base) {
+  double h_small = 0.0, h_large = 0.0, v_small = 0.0, v_large = 0.0;
+  std::size_t n_small = 0, n_large = 0;
+  for (std::size_t i = 0; i < p.count; ++i) {
+    const double h = p.position[3 * i + axis] - base, v = sphere_volume(p.diameter[i]);
+    if (is_large.at(i)) {
+      h_large += h;
+      v_large += v;
+      ++n_large;
+    } else {
+      h_small += h;
+      v_small += v;
+      ++n_small;
+    }
+  }
+  if (n_small == 0 || n_large == 0) throw std::invalid_argument("segregation needs small and large particles");
+  const double s = (h_small / n_small) / (h_large / n_large);
+  const double x_large = v_large / (v_large + v_small);
+  const double s_max = (x_large + 1.0) / x_large;
+  return (s - 1.0) / (s_max - 1.0);
+}
+
+std::vector<double> granular_temperature(const CellWeights &w, const ParticleView &p, std::size_t cell_count) {
+  std::vector<double> volume(cell_count, 0.0), momentum(3 * cell_count, 0.0), energy(cell_count, 0.0);
+  for (std::size_t i = 0; i < p.count; ++i) {
+    const double v = sphere_volume(p.diameter[i]);
+    const double *u = p.velocity + 3 * i;
+    for (std::size_t k = w.offsets[i]; k < w.offsets[i + 1]; ++k) {
+      const int c = w.cells[k];
+      const double wv = w.weights[k] * v;
+      volume[c] += wv;
+      for (int a = 0; a < 3; ++a) momentum[3 * c + a] += wv * u[a];
+      energy[c] += wv * (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+    }
+  }
+  std::vector<double> theta(cell_count, 0.0);
+  for (std::size_t c = 0; c < cell_count; ++c) {
+    if (volume[c] <= 0.0) continue;
+    const double *m = &momentum[3 * c];
+    const double mean_sq = (m[0] * m[0] + m[1] * m[1] + m[2] * m[2]) / (volume[c] * volume[c]);
+    theta[c] = std::max(0.0, energy[c] / volume[c] - mean_sq) / 3.0;  // <|v|^2> - |v_sm|^2
+  }
+  return theta;
+}
+
+void TimeAverage::add(const std::vector<double> &field, double dt) {
+  if (sum_.empty()) sum_.assign(field.size(), 0.0);
+  if (field.size() != sum_.size()) throw std::invalid_argument("TimeAverage: field size changed");
+  if (!(dt > 0.0)) throw std::invalid_argument("TimeAverage: dt must be > 0");
+  for (std::size_t i = 0; i < field.size(); ++i) sum_[i] += field[i] * dt;
+  duration_ += dt;
+}
+
+std::vector<double> TimeAverage::mean() const {
+  if (duration_ <= 0.0) throw std::logic_error("TimeAverage: no sample yet");
+  std::vector<double> out(sum_);
+  for (double &v : out) v /= duration_;
+  return out;
+}
+
+}  // namespace tfdem::analysis

@@ -1,0 +1,142 @@
+// Analyses of seed 000 Fig. 5-13 and seed 001 eq. 49, against hand-built configurations.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "tfdem/analysis.h"
+
+namespace {
+
+using namespace tfdem;
+using namespace tfdem::analysis;
+
+struct Cloud {
+  std::vector<double> position, velocity, diameter, density;
+  ParticleView view() const {
+    return {diameter.size(), position.data(), velocity.data(), diameter.data(), density.data()};
+  }
+  void add(double x, double y, double z, double d, double vx = 0.0) {
+    position.insert(position.end(), {x, y, z});
+    velocity.insert(velocity.end(), {vx, 0.0, 0.0});
+    diameter.push_back(d);
+    density.push_back(2500.0);
+  }
+};
+
+// A chain of four touching spheres and one loner: N_c = 1 2 2 1 0, bulk 6/5, multicontact 2/4.
+TEST(Analysis, ChainCoordinationAndMulticontact) {
+  Cloud c;
+  const double d = 0.004;
+  for (int i = 0; i < 4; ++i) c.add(i * 0.99 * d, 0.0, 0.0, d);
+  c.add(0.1, 0.1, 0.0, d);
+  const auto nc = coordination_numbers(5, contact_pairs(c.view()));
+  EXPECT_EQ(nc, (std::vector<int>{1, 2, 2, 1, 0}));
+  EXPECT_DOUBLE_EQ(bulk_coordination_number(nc), 6.0 / 5.0);
+  EXPECT_DOUBLE_EQ(multicontact_ratio(nc), 2.0 / 4.0);
+  EXPECT_DOUBLE_EQ(multicontact_ratio({0, 0}), 0.0);
+}
+
+// Binned search equals the all-pairs search on a random polydisperse cloud.
+TEST(Analysis, ContactPairsMatchBruteForce) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  Cloud c;
+  for (int i = 0; i < 400; ++i) c.add(0.05 * u(rng), 0.05 * u(rng), 0.02 * u(rng), 0.002 + 0.003 * u(rng));
+  const auto pairs = contact_pairs(c.view());
+  std::size_t brute = 0;
+  for (std::size_t i = 0; i < 400; ++i)
+    for (std::size_t j = i + 1; j < 400; ++j) {
+      const double dx = c.position[3 * i] - c.position[3 * j], dy = c.position[3 * i + 1] - c.position[3 * j + 1],
+                   dz = c.position[3 * i + 2] - c.position[3 * j + 2];
+      if (std::sqrt(dx * dx + dy * dy + dz * dz) < 0.5 * (c.diameter[i] + c.diameter[j])) ++brute;
+    }
+  EXPECT_EQ(pairs.size(), brute);
+  EXPECT_GT(brute, 50u);
+}
+
+// A hexagonal layer with 0.1 % overlap: the central particle has N_c = 6.
+TEST(Analysis, HexagonalLayerCentreHasSixContacts) {
+  Cloud c;
+  const double d = 0.0025, s = 0.999 * d;
+  for (int row = -2; row <= 2; ++row)
+    for (int col = -2; col <= 2; ++col) c.add((col + 0.5 * (row & 1)) * s, row * s * std::sqrt(3.0) / 2.0, 0.0, d);
+  const auto nc = coordination_numbers(c.diameter.size(), contact_pairs(c.view()));
+  EXPECT_EQ(nc[12], 6);  // row 0, col 0
+}
+
+TEST(Analysis, MeanHeight) {
+  Cloud c;
+  c.add(0.0, 0.01, 0.0, 0.002);
+  c.add(0.0, 0.04, 0.0, 0.002);
+  EXPECT_DOUBLE_EQ(mean_height(c.view(), 1, 0.0), 0.025);
+  EXPECT_DOUBLE_EQ(mean_height(c.view(), 1, 0.01), 0.015);
+}
+
+// Sums of |f| / (m g) per cell and their ratio; -1 where the drag sum is zero.
+TEST(Analysis, ForceMapsScaleByParticleWeight) {
+  Cloud c;
+  c.add(0.0, 0.0, 0.0, 0.004);
+  c.add(0.0, 0.0, 0.0, 0.004);
+  c.add(0.0, 0.0, 0.0, 0.004);
+  const int cells[] = {0, 0, 1};
+  const double weight = sphere_volume(0.004) * 2500.0 * 9.81;
+  const double contact[] = {3 * weight, 4 * weight, 0, 0, 0, 5 * weight, weight, 0, 0};
+  const double drag[] = {0, weight, 0, 0, 0.5 * weight, 0, 0, 0, 0};
+  const ForceMaps m = force_maps(c.view(), cells, 2, contact, drag, 9.81);
+  EXPECT_NEAR(m.contact[0], 5.0 + 5.0, 1e-12);
+  EXPECT_NEAR(m.drag[0], 1.5, 1e-12);
+  EXPECT_NEAR(m.ratio[0], 10.0 / 1.5, 1e-12);
+  EXPECT_NEAR(m.contact[1], 1.0, 1e-12);
+  EXPECT_EQ(m.ratio[1], -1.0);
+}
+
+// Seed 001 eq. 49 limits. Segregated: the large particles (volume fraction x_L) fill the
+// bottom x_L H of the column, the small ones the rest, each evenly spaced, so <h_L> = x_L H/2,
+// <h_S> = (1 + x_L) H/2 and S = S_max: s = 1. Mixed: both spread over the whole column: s = 0.
+TEST(Analysis, SegregationDegreeLimits) {
+  const double ds = 0.0015, dl = 0.0025, height = 0.15;
+  const int n_large = 300, n_small = 463;  // x_L ~ 0.75 as in seed 001's experiment
+  const double vl = n_large * sphere_volume(dl), vs = n_small * sphere_volume(ds);
+  const double x_large = vl / (vl + vs);
+  Cloud segregated, mixed;
+  std::vector<bool> large_s, large_m;
+  for (int k = 0; k < n_large; ++k) {
+    segregated.add(0.0, x_large * height * (k + 0.5) / n_large, 0.0, dl);
+    mixed.add(0.0, height * (k + 0.5) / n_large, 0.0, dl);
+  }
+  for (int k = 0; k < n_small; ++k) {
+    segregated.add(0.0, height * (x_large + (1.0 - x_large) * (k + 0.5) / n_small), 0.0, ds);
+    mixed.add(0.0, height * (k + 0.5) / n_small, 0.0, ds);
+  }
+  large_s.assign(n_large, true);
+  large_s.resize(n_large + n_small, false);
+  large_m = large_s;
+  EXPECT_NEAR(segregation_degree(segregated.view(), large_s, 1, 0.0), 1.0, 1e-12);
+  EXPECT_NEAR(segregation_degree(mixed.view(), large_m, 1, 0.0), 0.0, 1e-12);
+}
+
+// Two equal particles moving at +u and -u in one cell: v_sm = 0, theta = u^2 / 3 (seed 000 eq. 6).
+TEST(Analysis, GranularTemperatureOfOpposedPair) {
+  Cloud c;
+  c.add(0.002, 0.002, 0.0, 0.002, 0.3);
+  c.add(0.006, 0.002, 0.0, 0.002, -0.3);
+  c.add(0.015, 0.002, 0.0, 0.002, 0.7);  // alone in cell 1: theta = 0
+  const int cells[] = {0, 0, 1};
+  const CellWeights w = centroid_weights(cells, 3);
+  const auto theta = granular_temperature(w, c.view(), 2);
+  EXPECT_NEAR(theta[0], 0.09 / 3.0, 1e-15);
+  EXPECT_NEAR(theta[1], 0.0, 1e-15);
+}
+
+TEST(Analysis, TimeAverageWeightsByDuration) {
+  TimeAverage avg;
+  EXPECT_THROW(avg.mean(), std::logic_error);
+  avg.add({1.0, 2.0}, 0.1);
+  avg.add({3.0, 2.0}, 0.3);
+  EXPECT_NEAR(avg.mean()[0], (0.1 + 0.9) / 0.4, 1e-15);
+  EXPECT_NEAR(avg.mean()[1], 2.0, 1e-15);
+  EXPECT_THROW(avg.add({1.0}, 0.1), std::invalid_argument);
+}
+
+}  // namespace
