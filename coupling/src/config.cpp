@@ -24,7 +24,8 @@ std::string location(const std::string &file, const YAML::Mark &mark) {
   return file + ":" + std::to_string(mark.line + 1) + ":" + std::to_string(mark.column + 1);
 }
 
-std::string format_number(double v) {
+template <typename T>
+std::string format_number(T v) {
   std::ostringstream s;
   s << v;
   return s.str();
@@ -98,38 +99,31 @@ ConfigSection ConfigSection::section(const std::string &key, bool required) {
   return ConfigSection(file_, std::move(node), key_path(key), *problems_);
 }
 
-double ConfigSection::number(const std::string &key, double fallback, double min, double max, bool required) {
+template <typename T>
+T ConfigSection::scalar(const std::string &key, T fallback, T min, T max, bool required, const char *kind) {
   const std::optional<YAML::Node> value = child(key, required);
   if (!value) return fallback;
-  double v;
+  T v;
   try {
-    v = value->as<double>();
+    v = value->as<T>();
   } catch (const YAML::Exception &) {
-    problem(key, "must be a number, got '" + (value->IsScalar() ? value->Scalar() : std::string("a collection")) + "'");
+    problem(key, std::string("must be ") + kind + ", got '" +
+                     (value->IsScalar() ? value->Scalar() : std::string("a collection")) + "'");
     return fallback;
   }
-  if (!(v >= min && v <= max) || std::isnan(v)) {
+  if (!(v >= min && v <= max)) {
     problem(key, "value " + format_number(v) + " is out of range [" + format_number(min) + ", " + format_number(max) + "]");
     return fallback;
   }
   return v;
 }
 
+double ConfigSection::number(const std::string &key, double fallback, double min, double max, bool required) {
+  return scalar<double>(key, fallback, min, max, required, "a number");
+}
+
 long ConfigSection::integer(const std::string &key, long fallback, long min, long max, bool required) {
-  const std::optional<YAML::Node> value = child(key, required);
-  if (!value) return fallback;
-  long v;
-  try {
-    v = value->as<long>();
-  } catch (const YAML::Exception &) {
-    problem(key, "must be a whole number, got '" + (value->IsScalar() ? value->Scalar() : std::string("a collection")) + "'");
-    return fallback;
-  }
-  if (v < min || v > max) {
-    problem(key, "value " + std::to_string(v) + " is out of range [" + std::to_string(min) + ", " + std::to_string(max) + "]");
-    return fallback;
-  }
-  return v;
+  return scalar<long>(key, fallback, min, max, required, "a whole number");
 }
 
 bool ConfigSection::boolean(const std::string &key, bool fallback) {

@@ -142,11 +142,7 @@ const std::vector<std::string> &law_names() {
 }
 
 Law law_from_name(const std::string &name) {
-  const auto &names = law_names();
-  for (std::size_t i = 0; i < names.size(); ++i)
-    if (names[i] == name) return static_cast<Law>(i);
-  throw std::invalid_argument("unknown drag law '" + name + "'" + did_you_mean(name, names) +
-                              "; valid: " + quoted_list(names));
+  return static_cast<Law>(index_of_name(name, law_names(), "drag law"));
 }
 
 const std::string &law_name(Law law) { return law_names().at(static_cast<std::size_t>(law)); }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <numeric>
+#include <stdexcept>
 
 namespace tfdem {
 
@@ -35,6 +36,13 @@ std::string nearest_name(const std::string &given, const std::vector<std::string
 std::string did_you_mean(const std::string &given, const std::vector<std::string> &valid) {
   const std::string nearest = nearest_name(given, valid);
   return nearest.empty() ? std::string() : " (did you mean '" + nearest + "'?)";
+}
+
+std::size_t index_of_name(const std::string &name, const std::vector<std::string> &names, const std::string &what) {
+  for (std::size_t i = 0; i < names.size(); ++i)
+    if (names[i] == name) return i;
+  throw std::invalid_argument("unknown " + what + " '" + name + "'" + did_you_mean(name, names) +
+                              "; valid: " + quoted_list(names));
 }
 
 std::string quoted_list(const std::vector<std::string> &names) {

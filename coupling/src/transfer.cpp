@@ -122,11 +122,7 @@ const std::vector<std::string> &transfer_method_names() {
 }
 
 TransferMethod transfer_method_from_name(const std::string &name) {
-  const auto &names = transfer_method_names();
-  for (std::size_t i = 0; i < names.size(); ++i)
-    if (names[i] == name) return static_cast<TransferMethod>(i);
-  throw std::invalid_argument("unknown transfer method '" + name + "'" + did_you_mean(name, names) +
-                              "; valid: " + quoted_list(names));
+  return static_cast<TransferMethod>(index_of_name(name, transfer_method_names(), "transfer method"));
 }
 
 void transfer(const CellWeights &weights, const ParticleView &particles, const CellGas &cells,

@@ -165,11 +165,7 @@ const std::vector<std::string> &void_fraction_method_names() {
 }
 
 VoidFractionMethod void_fraction_method_from_name(const std::string &name) {
-  const auto &names = void_fraction_method_names();
-  for (std::size_t i = 0; i < names.size(); ++i)
-    if (names[i] == name) return static_cast<VoidFractionMethod>(i);
-  throw std::invalid_argument("unknown void fraction method '" + name + "'" + did_you_mean(name, names) +
-                              "; valid: " + quoted_list(names));
+  return static_cast<VoidFractionMethod>(index_of_name(name, void_fraction_method_names(), "void fraction method"));
 }
 
 double minimum_cube_factor() { return std::cbrt(kPi / 6.0); }

@@ -64,6 +64,8 @@ class ConfigSection {
   std::string where(const std::string &key) const;
   std::string key_path(const std::string &key) const;
   std::optional<YAML::Node> child(const std::string &key, bool required);
+  template <typename T>
+  T scalar(const std::string &key, T fallback, T min, T max, bool required, const char *kind);
 
   std::string file_;
   std::unique_ptr<YAML::Node> node_;

@@ -16,6 +16,10 @@ std::string nearest_name(const std::string &given, const std::vector<std::string
 // " (did you mean 'x'?)" for the nearest valid name, or "" when there is none.
 std::string did_you_mean(const std::string &given, const std::vector<std::string> &valid);
 
+// Position of `name` in `names`; throws std::invalid_argument "unknown <what> 'name' (did you
+// mean ...?); valid: ..." when it is not there.
+std::size_t index_of_name(const std::string &name, const std::vector<std::string> &names, const std::string &what);
+
 // The valid names as "'a', 'b', 'c'".
 std::string quoted_list(const std::vector<std::string> &names);
 
