@@ -20,6 +20,7 @@ Description
 
 #include "fvCFD.H"
 #include "pimpleControl.H"
+#include "tfdemCoupling.H"
 
 int main(int argc, char *argv[])
 {
@@ -37,6 +38,7 @@ int main(int argc, char *argv[])
     #include "createControl.H"
     #include "createTimeControls.H"
     #include "createFields.H"
+    #include "createCoupling.H"
     #include "initContinuityErrs.H"
 
     Info<< "\nStarting time loop\n" << endl;
@@ -51,6 +53,13 @@ int main(int argc, char *argv[])
 
         Info<< "Time = " << runTime.timeName() << nl << endl;
 
+        if (coupling.valid())
+        {
+            coupling->evolve();
+            voidFractionf = fvc::interpolate(voidFraction);
+            voidFractionPhi = voidFractionf*phi;
+        }
+
         while (pimple.loop())
         {
             #include "UEqn.H"
@@ -64,6 +73,11 @@ int main(int argc, char *argv[])
         runTime.write();
 
         runTime.printExecutionTime(Info);
+    }
+
+    if (coupling.valid())
+    {
+        coupling->report();
     }
 
     Info<< "End\n" << endl;

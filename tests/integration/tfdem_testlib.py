@@ -30,10 +30,15 @@ def scratch(name):
 
 
 def copy_case(source, name):
-    """Copy an OpenFOAM case's 0/, constant/, system/ into a fresh scratch directory."""
+    """Copy a case's 0/, constant/, system/ and, for coupled cases, coupling.yaml and the
+    DEM input (in.*) into a fresh scratch directory."""
     dest = scratch(name)
     for sub in ("0", "constant", "system"):
-        shutil.copytree(os.path.join(source, sub), os.path.join(dest, sub))
+        shutil.copytree(os.path.join(source, sub), os.path.join(dest, sub),
+                        ignore=shutil.ignore_patterns("polyMesh"))
+    for entry in os.listdir(source):
+        if entry == "coupling.yaml" or entry.startswith("in."):
+            shutil.copy(os.path.join(source, entry), dest)
     return dest
 
 

@@ -1,0 +1,54 @@
+// A LIGGGHTS instance run in-process by the coupler, with TFDEM's fixes registered.
+// Exposes plain arrays only, so callers need no LIGGGHTS headers (and OpenFOAM code can use
+// it without name clashes).
+#ifndef TFDEM_DEM_INSTANCE_H
+#define TFDEM_DEM_INSTANCE_H
+
+#include <mpi.h>
+
+#include <cstddef>
+#include <string>
+
+namespace LAMMPS_NS {
+class LAMMPS;
+class FixTfdemCoupling;
+}  // namespace LAMMPS_NS
+
+namespace tfdem {
+
+class DemInstance {
+ public:
+  // Start LIGGGHTS on `comm` in `directory`, log to log_file (screen output to
+  // log_file + ".screen"), register our fixes and run `script` (which must set up the
+  // particles and one `fix tfdem/coupling`, and not `run`). Throws std::runtime_error naming
+  // a missing script or a script without the coupling fix.
+  DemInstance(MPI_Comm comm, const std::string &script, const std::string &log_file);
+  ~DemInstance();
+  DemInstance(const DemInstance &) = delete;
+  DemInstance &operator=(const DemInstance &) = delete;
+
+  // Advance `steps` DEM steps (LIGGGHTS `run`, set-up only the first time).
+  void run(long steps);
+  // Run one LIGGGHTS command (e.g. output set-up from the coupler).
+  void command(const std::string &line);
+  double time_step() const;
+  // Particles on this rank and their per-atom arrays (x, v: 3 per atom; radius, mass: 1).
+  std::size_t local_count() const;
+  const double *positions() const;
+  const double *velocities() const;
+  const double *radii() const;
+  const double *masses() const;
+  // Fluid force applied to each local particle every DEM step until set again (3 per atom).
+  double *fluid_force();
+  // Total particles over all ranks.
+  long global_count() const;
+
+ private:
+  LAMMPS_NS::LAMMPS *lmp_ = nullptr;
+  LAMMPS_NS::FixTfdemCoupling *fix_ = nullptr;
+  bool set_up_ = false;
+};
+
+}  // namespace tfdem
+
+#endif
