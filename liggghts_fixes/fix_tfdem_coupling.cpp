@@ -16,15 +16,15 @@ using namespace FixConst;
 
 namespace {
 
+// Stop LIGGGHTS with `message` (error->all prints it on rank 0 and exits on every rank).
+void fail(Error *error, const std::string &message) { error->all(FLERR, message.c_str()); }
+
 // Parse a floating-point argument or stop with a message naming it.
 double parse_double(Error *error, const char *keyword, const char *text) {
   char *end = nullptr;
   const double value = std::strtod(text, &end);
-  if (end == text || *end != '\0') {
-    const std::string msg = std::string("fix tfdem/coupling: argument of '") + keyword +
-                            "' must be a number, got '" + text + "'";
-    error->all(FLERR, msg.c_str());
-  }
+  if (end == text || *end != '\0')
+    fail(error, std::string("fix tfdem/coupling: argument of '") + keyword + "' must be a number, got '" + text + "'");
   return value;
 }
 
@@ -67,10 +67,8 @@ void FixTfdemCoupling::parse_arguments(int narg, char **arg) {
       iarg += 4;
     } else {
       const std::vector<std::string> keywords = {"weight_fraction", "gravity"};
-      const std::string msg = "fix tfdem/coupling: unknown argument '" + key + "'" +
-                              tfdem::did_you_mean(key, keywords) +
-                              "; valid keywords: " + tfdem::quoted_list(keywords);
-      error->all(FLERR, msg.c_str());
+      fail(error, "fix tfdem/coupling: unknown argument '" + key + "'" + tfdem::did_you_mean(key, keywords) +
+                      "; valid keywords: " + tfdem::quoted_list(keywords));
     }
   }
   if (has_weight_fraction_ && !has_gravity_)

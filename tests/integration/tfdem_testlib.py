@@ -46,8 +46,10 @@ def run(args, cwd, log_name, ranks=1, expect_success=True):
     """Run a command (under mpirun when ranks > 1); return (exit code, combined output)."""
     if ranks > 1:
         args = ["mpirun", "-np", str(ranks)] + args
+    # errors="replace": LIGGGHTS 3.8.0, aborting on 2 ranks, sometimes echoes an error line
+    # from a freed buffer (bytes that are not UTF-8) on the second rank.
     proc = subprocess.run(args, cwd=cwd, env=environment(), stdout=subprocess.PIPE,
-                          stderr=subprocess.STDOUT, text=True)
+                          stderr=subprocess.STDOUT, text=True, errors="replace")
     with open(os.path.join(cwd, log_name), "w") as log:
         log.write(proc.stdout)
     if expect_success and proc.returncode != 0:
