@@ -35,8 +35,8 @@ bool Foam::TfdemCoupling::caseIsCoupled(const Time& runTime)
 Foam::TfdemCoupling::TfdemCoupling
 (
     const fvMesh& mesh,
-    const volVectorField& U,
     const volScalarField& p,
+    const surfaceScalarField& superficialFlux,
     volScalarField& voidFraction,
     volScalarField& Ksl,
     volVectorField& Us,
@@ -45,11 +45,12 @@ Foam::TfdemCoupling::TfdemCoupling
 )
 :
     mesh_(mesh),
-    U_(U),
     p_(p),
+    superficialFlux_(superficialFlux),
     voidFraction_(voidFraction),
     Ksl_(Ksl),
-    Us_(Us)
+    Us_(Us),
+    wallStart_(std::chrono::steady_clock::now())
 {
     const fileName configFile(mesh.time().path()/couplingFileName);
     try
@@ -240,6 +241,10 @@ void Foam::TfdemCoupling::evolve()
 
 void Foam::TfdemCoupling::gatherCellFields()
 {
+    // Interstitial gas velocity seen by particles: the superficial face fluxes, which satisfy
+    // continuity exactly, reconstructed in the cell and divided by the cell's eps. Unlike the
+    // momentum solution U, it has no odd-even wiggles where eps and K jump (bed surfaces).
+    const volVectorField gasVelocity(fvc::reconstruct(superficialFlux_)/voidFraction_);
     const volVectorField gradP(fvc::grad(p_));
     const std::size_t n = cellOfGridCell_.size();
     cellVelocity_.resize(3*n);
@@ -249,7 +254,7 @@ void Foam::TfdemCoupling::gatherCellFields()
         const label celli = cellOfGridCell_[g];
         for (direction a = 0; a < 3; ++a)
         {
-            cellVelocity_[3*g + a] = U_[celli][a];
+            cellVelocity_[3*g + a] = gasVelocity[celli][a];
             cellPressureGradient_[3*g + a] = gradP[celli][a];
         }
     }
@@ -353,4 +358,23 @@ void Foam::TfdemCoupling::report() const
         << " last momentum imbalance (particle drag - gas sink) ("
         << m[0] << " " << m[1] << " " << m[2] << ") N of total |drag| "
         << transfer_.drag_magnitude_sum << " N" << endl;
+}
+
+
+void Foam::TfdemCoupling::progress()
+{
+    const Time& runTime = mesh_.time();
+    const scalar t = runTime.value();
+    const scalar end = runTime.endTime().value();
+    if (t + 0.5*runTime.deltaTValue() < nextProgressTime_ && t + 0.5*runTime.deltaTValue() < end)
+    {
+        return;
+    }
+    nextProgressTime_ = t + 0.01*(end - runTime.startTime().value());
+    const double wall =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart_).count();
+    const scalar done = (t - runTime.startTime().value())/(end - runTime.startTime().value());
+    Info<< "TFDEM progress: t = " << t << " s of " << end << " s, wall "
+        << label(wall) << " s, ETA " << label(done > 0 ? wall*(1 - done)/done : 0)
+        << " s" << endl;
 }

@@ -72,6 +72,11 @@ int main(int argc, char *argv[])
 
         runTime.write();
 
+        if (coupling.valid())
+        {
+            coupling->progress();
+        }
+
         runTime.printExecutionTime(Info);
     }
 

@@ -1,0 +1,58 @@
+"""Ergun pressure drop of the fixed bed in this case, and the runs that measure it.
+
+The bed: 960 spheres d = 2.5 mm on a square lattice of spacing s = 2.55 mm in one layer of
+depth d (in.fixed_bed), so eps_g = 1 - pi d^2 / (6 s^2) = 0.4967 and height L = 40 s.
+Ergun (1952), with superficial velocity U:
+  dp/L = 150 eps_s^2 mu U / (eps^3 d^2) + 1.75 eps_s rho U^2 / (eps^3 d).
+The probes sit 2.55 cm (below the bed) and 17.85 cm (above it) above the inlet, so they also
+see the gas weight rho g (0.1785 - 0.0255).
+"""
+import math
+import os
+import re
+import shutil
+import subprocess
+
+D, SPACING, MU, RHO, G = 0.0025, 0.00255, 1.8e-5, 1.2, 9.81
+BED_HEIGHT = 40 * SPACING
+PROBE_GAP = 0.1785 - 0.0255
+VELOCITIES = (0.3, 0.6, 1.0)  # superficial, m/s
+EPS = 1.0 - math.pi * D ** 2 / (6 * SPACING ** 2)
+
+
+def ergun_pressure_drop(u):
+    """Expected p(below) - p(above) (Pa) at superficial velocity u."""
+    eps_s = 1.0 - EPS
+    per_length = (150 * eps_s ** 2 * MU * u / (EPS ** 3 * D ** 2)
+                  + 1.75 * eps_s * RHO * u * u / (EPS ** 3 * D))
+    return per_length * BED_HEIGHT + RHO * G * PROBE_GAP
+
+
+def measured_pressure_drop(case):
+    """Last probe row of a finished run: p(below) - p(above) (Pa)."""
+    rows = [line.split() for line in open(os.path.join(case, "postProcessing", "pressure", "0", "p"))
+            if line.strip() and not line.startswith("#")]
+    return float(rows[-1][1]) - float(rows[-1][2])
+
+
+def prepare_run(source, dest, u, runner):
+    """Copy the case to dest with inlet velocity u and run blockMesh and tfdemFoam there via
+    runner(args, cwd, log_name)."""
+    shutil.rmtree(dest, ignore_errors=True)
+    os.makedirs(dest)
+    for sub in ("0", "constant", "system"):
+        shutil.copytree(os.path.join(source, sub), os.path.join(dest, sub),
+                        ignore=shutil.ignore_patterns("polyMesh"))
+    for name in ("coupling.yaml", "in.fixed_bed"):
+        shutil.copy(os.path.join(source, name), dest)
+    path = os.path.join(dest, "0", "U")
+    text = open(path).read()
+    open(path, "w").write(re.sub(r"inlet(\s*\{[^}]*value\s+uniform\s+)\(0 [0-9.]+ 0\)", rf"inlet\g<1>(0 {u} 0)", text))
+    runner(["blockMesh"], dest, "log.blockMesh")
+    runner(["tfdemFoam"], dest, "log.tfdemFoam")
+    return measured_pressure_drop(dest)
+
+
+def run_locally(args, cwd, log_name):
+    with open(os.path.join(cwd, log_name), "w") as log:
+        subprocess.run(args, cwd=cwd, stdout=log, stderr=subprocess.STDOUT, check=True)
