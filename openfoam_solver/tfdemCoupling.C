@@ -321,6 +321,7 @@ void Foam::TfdemCoupling::couple()
     };
     tfdem::transfer(weights_, particles, cells, atParticles, config_.transfer, transfer_);
 
+    checkConservation(particles);
     double* force = dem_->fluid_force();
     std::copy(transfer_.particle_force.begin(), transfer_.particle_force.end(), force);
     writeCellFields();
@@ -350,6 +351,41 @@ void Foam::TfdemCoupling::writeCellFields()
 }
 
 
+void Foam::TfdemCoupling::checkConservation(const tfdem::ParticleView& particles)
+{
+    if (gasFraction_.floored_cells == 0)
+    {
+        double particleVolume = 0, mappedVolume = 0;
+        for (std::size_t i = 0; i < particles.count; ++i)
+        {
+            particleVolume += tfdem::sphere_volume(particles.diameter[i]);
+        }
+        for (std::size_t g = 0; g < cellVolume_.size(); ++g)
+        {
+            mappedVolume += (1 - gasFraction_.gas_fraction[g])*cellVolume_[g];
+        }
+        if (particleVolume > 0)
+        {
+            ++volumeCheckedSteps_;
+            maxVolumeMismatch_ = std::max
+            (
+                maxVolumeMismatch_,
+                std::abs(mappedVolume - particleVolume)/particleVolume
+            );
+        }
+    }
+    const auto& m = transfer_.momentum_imbalance;
+    if (transfer_.drag_magnitude_sum > 0)
+    {
+        maxMomentumImbalance_ = std::max
+        (
+            maxMomentumImbalance_,
+            std::sqrt(m[0]*m[0] + m[1]*m[1] + m[2]*m[2])/transfer_.drag_magnitude_sum
+        );
+    }
+}
+
+
 void Foam::TfdemCoupling::report() const
 {
     const auto& m = transfer_.momentum_imbalance;
@@ -357,7 +393,13 @@ void Foam::TfdemCoupling::report() const
         << " fraction floor used in " << flooredCellSteps_ << " cell-steps;"
         << " last momentum imbalance (particle drag - gas sink) ("
         << m[0] << " " << m[1] << " " << m[2] << ") N of total |drag| "
-        << transfer_.drag_magnitude_sum << " N" << endl;
+        << transfer_.drag_magnitude_sum << " N" << nl
+        << "TFDEM conservation: max |sum (1-eps) V_cell - sum V_p| / sum V_p = "
+        << maxVolumeMismatch_ << " over " << volumeCheckedSteps_
+        << " steps without floor; max |momentum imbalance|"
+        << " / sum |drag| = " << maxMomentumImbalance_ << " ("
+        << tfdem::transfer_method_names()[int(config_.transfer.method)].c_str()
+        << ")" << endl;
 }
 
 
