@@ -1,0 +1,54 @@
+"""Bad input to the coupled solver stops it with a message naming file, key, value and what is
+expected; exit code non-zero; no crash. Each case is the settling tutorial with one fault."""
+import os
+import re
+
+from tfdem_testlib import SOURCE_DIR, Checks, copy_case, run
+
+TUTORIAL = os.path.join(SOURCE_DIR, "tutorials", "settling_particle")
+
+
+def edit(path, old, new):
+    text = open(path).read()
+    assert old in text, (path, old)
+    open(path, "w").write(text.replace(old, new))
+
+
+def expect_failure(checks, name, fault, must_contain):
+    case = copy_case(TUTORIAL, "coupled_bad_" + re.sub(r"\W+", "_", name))
+    fault(case)
+    run(["blockMesh"], case, "log.blockMesh")
+    code, output = run(["tfdemFoam"], case, "log.tfdemFoam", expect_success=False)
+    checks.true(f"{name}: non-zero exit", code > 0, f"(exit code {code})")
+    checks.true(f"{name}: no crash", "Segmentation fault" not in output and "sigsegv" not in output.lower())
+    for text in must_contain:
+        checks.true(f"{name}: message contains {text!r}", text in output)
+
+
+def main():
+    checks = Checks()
+    expect_failure(checks, "misspelt key in coupling.yaml",
+                   lambda c: edit(os.path.join(c, "coupling.yaml"), "  transfer:", "  transfr:"),
+                   ["coupling.yaml:12:3: coupling.transfr: unknown key (did you mean 'transfer'?)"])
+    expect_failure(checks, "DEM script not found",
+                   lambda c: edit(os.path.join(c, "coupling.yaml"), "script: in.settling", "script: in.missing"),
+                   ["dem.script: DEM input script", "in.missing' not found"])
+    expect_failure(checks, "coupling interval does not divide the gas step",
+                   lambda c: edit(os.path.join(c, "system", "controlDict"), "deltaT          1e-3;", "deltaT          1.5e-3;"),
+                   ["deltaT = 0.0015 s must equal dem.coupling_interval x DEM timestep = 10 x 0.0001 = 0.001 s"])
+    expect_failure(checks, "mesh depth is not d_p under the 2-D rule",
+                   lambda c: edit(os.path.join(c, "coupling.yaml"), "    method: centroid",
+                                  "    method: centroid\n    two_dimensional: true"),
+                   ["coupling.void_fraction.two_dimensional is true", "depth = particles.diameter = 0.0001 m",
+                    "1 cell(s) of depth 0.02 m"])
+    expect_failure(checks, "particle outside the mesh",
+                   lambda c: edit(os.path.join(c, "system", "blockMeshDict"), "0.4", "0.3"),
+                   ["particle 0 at (0.03, 0.35, 0.01) m is outside the mesh"])
+    expect_failure(checks, "gas properties disagree",
+                   lambda c: edit(os.path.join(c, "coupling.yaml"), "density: 1.2 ", "density: 1.25 "),
+                   ["gas properties disagree", "gas.density = 1.25"])
+    checks.finish()
+
+
+if __name__ == "__main__":
+    main()
