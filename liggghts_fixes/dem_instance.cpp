@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "atom.h"
+#include "fix_property_global.h"
 #include "fix_tfdem_coupling.h"
 #include "input.h"
 #include "lammps.h"
@@ -59,5 +60,23 @@ const double *DemInstance::masses() const { return lmp_->atom->rmass; }
 double *DemInstance::fluid_force() { return local_count() ? fix_->fluid_force(0) : nullptr; }
 
 long DemInstance::global_count() const { return static_cast<long>(lmp_->atom->natoms); }
+
+namespace {
+
+// Value (1,1) of a per-type-pair fix property/global named `name`, or `fallback` when absent.
+double type_pair_property(LAMMPS_NS::LAMMPS *lmp, const char *name, double fallback) {
+  LAMMPS_NS::Fix *fix = lmp->modify->find_fix_property(name, "property/global", "peratomtypepair", 0, 0,
+                                                       "tfdem", false);
+  return fix ? static_cast<LAMMPS_NS::FixPropertyGlobal *>(fix)->compute_array(0, 0) : fallback;
+}
+
+}  // namespace
+
+bool DemInstance::linear_contact(LinearContact &out) const {
+  out.stiffness = type_pair_property(lmp_, "kn", -1.0);
+  out.damping = type_pair_property(lmp_, "gamman_abs", -1.0);
+  out.restitution = type_pair_property(lmp_, "coefficientRestitution", -1.0);
+  return out.stiffness > 0.0;
+}
 
 }  // namespace tfdem

@@ -43,6 +43,17 @@ class DemInstance {
   // Total particles over all ranks.
   long global_count() const;
 
+  // Particle-particle (type 1) normal contact parameters of a linear model, as the script set
+  // them with fix property/global: stiffness k_n (N/m) and either absolute damping eta_n
+  // (N s/m, gamman_abs) or restitution e_n (coefficientRestitution). False when k_n is absent
+  // (e.g. a Hertz model).
+  struct LinearContact {
+    double stiffness = 0.0;
+    double damping = -1.0;      // < 0 when not given
+    double restitution = -1.0;  // < 0 when not given
+  };
+  bool linear_contact(LinearContact &out) const;
+
  private:
   LAMMPS_NS::LAMMPS *lmp_ = nullptr;
   LAMMPS_NS::FixTfdemCoupling *fix_ = nullptr;

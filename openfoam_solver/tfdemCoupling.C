@@ -3,9 +3,11 @@
 #include <mpi.h>
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "dem_instance.h"
+#include "tfdem/contact.h"
 
 namespace
 {
@@ -209,8 +211,48 @@ void Foam::TfdemCoupling::checkTwoDimensionalDepth() const
 }
 
 
+void Foam::TfdemCoupling::checkContactTimeStep() const
+{
+    tfdem::DemInstance::LinearContact contact;
+    if (!dem_->linear_contact(contact) || (contact.damping < 0 && contact.restitution < 0))
+    {
+        Info<< "TFDEM coupling: no linear k_n with gamman_abs or coefficientRestitution"
+            << " in the DEM script: contact time not checked" << endl;
+        return;
+    }
+    double lightest = std::numeric_limits<double>::max();
+    for (std::size_t i = 0; i < dem_->local_count(); ++i)
+    {
+        lightest = std::min(lightest, dem_->masses()[i]);
+    }
+    reduce(lightest, minOp<scalar>());
+    if (lightest == std::numeric_limits<double>::max())
+    {
+        return;
+    }
+    const double mEff = tfdem::contact::effective_mass(lightest, lightest);
+    const double tc = contact.damping >= 0
+      ? tfdem::contact::contact_time_from_damping(contact.stiffness, contact.damping, mEff)
+      : tfdem::contact::contact_time(contact.stiffness, contact.restitution, mEff);
+    const double dt = dem_->time_step();
+    Info<< "TFDEM coupling: particle-particle contact time t_c = " << tc
+        << " s (k_n = " << contact.stiffness << " N/m, lightest particles), "
+        << tc/dt << " DEM steps per contact" << endl;
+    if (dt > tc/10)
+    {
+        FatalErrorInFunction
+            << mesh_.time().path()/config_.dem_script << ": DEM timestep " << dt
+            << " s is above t_c/10 = " << tc/10 << " s (seed 000 eq. 26 with k_n = "
+            << contact.stiffness << " N/m and the lightest particles): contacts are not"
+            << " resolved; use timestep <= t_c/50 = " << tc/50 << " s"
+            << exit(FatalError);
+    }
+}
+
+
 void Foam::TfdemCoupling::checkTimeSteps(const Time& runTime) const
 {
+    checkContactTimeStep();
     if (runTime.controlDict().lookupOrDefault<Switch>("adjustTimeStep", false))
     {
         FatalErrorInFunction

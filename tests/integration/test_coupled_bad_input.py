@@ -47,6 +47,10 @@ def main():
     expect_failure(checks, "gas properties disagree",
                    lambda c: edit(os.path.join(c, "coupling.yaml"), "density: 1.2 ", "density: 1.25 "),
                    ["gas properties disagree", "gas.density = 1.25"])
+    # k_n = 1000 N/m for 100 um spheres: t_c = 2.5e-6 s, so a 1e-4 s step is far above t_c/10.
+    expect_failure(checks, "DEM step above t_c/10",
+                   lambda c: edit(os.path.join(c, "in.settling"), "kn peratomtypepair 1 1e-3", "kn peratomtypepair 1 1e3"),
+                   ["DEM timestep 0.0001 s is above t_c/10", "use timestep <= t_c/50"])
     checks.finish()
 
 
