@@ -38,12 +38,19 @@ DemInstance::DemInstance(MPI_Comm comm, const std::string &script, const std::st
 DemInstance::~DemInstance() { delete lmp_; }
 
 void DemInstance::run(long steps) {
+  if (global_count() == 0 && !inserts_particles()) return;  // LIGGGHTS 3.8.0 cannot run empty
   const std::string line = "run " + std::to_string(steps) + (set_up_ ? " pre no post no" : " post no");
   lmp_->input->one(line.c_str());
   set_up_ = true;
 }
 
 void DemInstance::command(const std::string &line) { lmp_->input->one(line.c_str()); }
+
+bool DemInstance::inserts_particles() const {
+  for (int i = 0; i < lmp_->modify->nfix; ++i)
+    if (std::strncmp(lmp_->modify->fix[i]->style, "insert/", 7) == 0) return true;
+  return false;
+}
 
 double DemInstance::time_step() const { return lmp_->update->dt; }
 

@@ -27,8 +27,12 @@ class DemInstance {
   DemInstance(const DemInstance &) = delete;
   DemInstance &operator=(const DemInstance &) = delete;
 
-  // Advance `steps` DEM steps (LIGGGHTS `run`, set-up only the first time).
+  // Advance `steps` DEM steps (LIGGGHTS `run`, set-up only the first time). With no
+  // particles and no insertion fix there is nothing to advance (and LIGGGHTS 3.8.0 stops
+  // with "Atom types must start from 1"), so nothing runs.
   void run(long steps);
+  // True when the script has a particle insertion fix (style insert/*).
+  bool inserts_particles() const;
   // Run one LIGGGHTS command (e.g. output set-up from the coupler).
   void command(const std::string &line);
   double time_step() const;
