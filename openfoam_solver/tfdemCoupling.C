@@ -14,6 +14,13 @@ namespace
 
 const Foam::word couplingFileName("coupling.yaml");
 
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start)
+{
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
 bool ownsMpi = false;
 
 // Relative difference |a - b| / max(|a|, |b|).
@@ -276,7 +283,9 @@ void Foam::TfdemCoupling::checkTimeSteps(const Time& runTime) const
 
 void Foam::TfdemCoupling::evolve()
 {
+    const Clock::time_point start = Clock::now();
     dem_->run(config_.coupling_interval);
+    demSeconds_ += secondsSince(start);
     couple();
 }
 
@@ -305,6 +314,7 @@ void Foam::TfdemCoupling::gatherCellFields()
 
 void Foam::TfdemCoupling::couple()
 {
+    const Clock::time_point mapStart = Clock::now();
     const std::size_t n = dem_->local_count();
     diameter_.resize(n);
     density_.resize(n);
@@ -342,6 +352,9 @@ void Foam::TfdemCoupling::couple()
             << gasFraction_.lowest_unfloored << ")" << endl;
     }
 
+    mapSeconds_ += secondsSince(mapStart);
+
+    const Clock::time_point forceStart = Clock::now();
     gatherCellFields();
     const std::vector<double> uAt =
         tfdem::average_to_particles(weights_, cellVelocity_.data(), 3);
@@ -367,6 +380,7 @@ void Foam::TfdemCoupling::couple()
     double* force = dem_->fluid_force();
     std::copy(transfer_.particle_force.begin(), transfer_.particle_force.end(), force);
     writeCellFields();
+    forceSeconds_ += secondsSince(forceStart);
 }
 
 
@@ -442,6 +456,14 @@ void Foam::TfdemCoupling::report() const
         << " / sum |drag| = " << maxMomentumImbalance_ << " ("
         << tfdem::transfer_method_names()[int(config_.transfer.method)].c_str()
         << ")" << endl;
+    const double total = demSeconds_ + mapSeconds_ + forceSeconds_ + gasSeconds_;
+    if (total > 0)
+    {
+        Info<< "TFDEM timing: DEM " << demSeconds_ << " s, locate+map " << mapSeconds_
+            << " s, forces " << forceSeconds_ << " s, gas " << gasSeconds_
+            << " s; (DEM + coupling + gas) / DEM = "
+            << (demSeconds_ > 0 ? total/demSeconds_ : 0) << endl;
+    }
 }
 
 

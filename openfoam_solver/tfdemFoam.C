@@ -22,6 +22,8 @@ Description
 #include "pimpleControl.H"
 #include "tfdemCoupling.H"
 
+#include <chrono>
+
 int main(int argc, char *argv[])
 {
     argList::addNote
@@ -60,6 +62,7 @@ int main(int argc, char *argv[])
             voidFractionPhi = voidFractionf*phi;
         }
 
+        const auto gasStart = std::chrono::steady_clock::now();
         while (pimple.loop())
         {
             #include "UEqn.H"
@@ -68,6 +71,17 @@ int main(int argc, char *argv[])
             {
                 #include "pEqn.H"
             }
+        }
+
+        if (coupling.valid())
+        {
+            coupling->addGasSeconds
+            (
+                std::chrono::duration<double>
+                (
+                    std::chrono::steady_clock::now() - gasStart
+                ).count()
+            );
         }
 
         runTime.write();
