@@ -1,7 +1,6 @@
 #include "fix_tfdem_coupling.h"
 
 #include <cstdlib>
-#include <cstring>
 #include <string>
 #include <vector>
 

@@ -360,8 +360,9 @@ void Foam::TfdemCoupling::couple()
         tfdem::average_to_particles(weights_, cellVelocity_.data(), 3);
     const std::vector<double> epsAt =
         tfdem::average_to_particles(weights_, gasFraction_.gas_fraction.data(), 1);
-    const std::vector<double> gradPAt =
-        tfdem::average_to_particles(weights_, cellPressureGradient_.data(), 3);
+    const std::vector<double> gradPAt = config_.pressure_gradient_force
+      ? tfdem::average_to_particles(weights_, cellPressureGradient_.data(), 3)
+      : std::vector<double>();
 
     const tfdem::CellGas cells
     {
@@ -371,7 +372,7 @@ void Foam::TfdemCoupling::couple()
     const tfdem::GasAtParticles atParticles
     {
         uAt.data(), epsAt.data(),
-        config_.pressure_gradient_force ? gradPAt.data() : nullptr,
+        gradPAt.empty() ? nullptr : gradPAt.data(),
         nullptr
     };
     tfdem::transfer(weights_, particles, cells, atParticles, config_.transfer, transfer_);
