@@ -10,54 +10,17 @@ namespace {
 
 double norm3(const double *v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
 
-// Per-cell particle statistics: solid volume (eq. 34 numerator), volume-weighted velocity sum
-// (eq. 35 numerator) and the Sauter-mean diameter sums.
-struct CellSolids {
-  std::vector<double> volume, momentum, d3, d2;
-  explicit CellSolids(std::size_t n) : volume(n, 0.0), momentum(3 * n, 0.0), d3(n, 0.0), d2(n, 0.0) {}
-};
-
-CellSolids accumulate_solids(const CellWeights &w, const ParticleView &p, std::size_t cell_count) {
-  CellSolids s(cell_count);
-  for (std::size_t i = 0; i < p.count; ++i) {
-    const double d = p.diameter[i], v = sphere_volume(d);
-    for (std::size_t k = w.offsets[i]; k < w.offsets[i + 1]; ++k) {
-      const int c = w.cells[k];
-      const double wv = w.weights[k] * v;
-      s.volume[c] += wv;
-      for (int a = 0; a < 3; ++a) s.momentum[3 * c + a] += wv * p.velocity[3 * i + a];
-      s.d3[c] += w.weights[k] * d * d * d;
-      s.d2[c] += w.weights[k] * d * d;
-    }
-  }
-  return s;
-}
-
-// Averaged gas sink (eq. 33 with eq. 35): K_c = beta_c, U_s,c = v_sm,c.
-void averaged_gas_side(const CellSolids &s, const CellGas &cells, const TransferOptions &o, TransferResult &r) {
-  for (std::size_t c = 0; c < cells.cell_count; ++c) {
-    if (s.volume[c] <= 0.0) continue;
-    double v_sm[3], slip[3];
-    for (int a = 0; a < 3; ++a) {
-      v_sm[a] = s.momentum[3 * c + a] / s.volume[c];
-      slip[a] = cells.velocity[3 * c + a] - v_sm[a];
-      r.cell_solid_velocity[3 * c + a] = v_sm[a];
-    }
-    const double sauter = s.d3[c] / s.d2[c];
-    r.cell_coefficient[c] = drag::beta(o.law, {cells.gas_fraction[c], sauter, norm3(slip)}, o.gas);
-  }
-}
-
 // Averaged particle drag: the cell's drag V_c K_c (u_c - v_sm) shared by volume.
-void averaged_particle_side(const CellWeights &w, const ParticleView &p, const CellSolids &s,
-                            const CellGas &cells, TransferResult &r) {
+void averaged_particle_drag(const CellWeights &w, const ParticleView &p, const CellSolidsState &cells,
+                            TransferResult &r) {
+  const CellGas &gas = cells.gas;
   for (std::size_t i = 0; i < p.count; ++i) {
     const double v = sphere_volume(p.diameter[i]);
     for (std::size_t k = w.offsets[i]; k < w.offsets[i + 1]; ++k) {
       const int c = w.cells[k];
-      const double share = w.weights[k] * v / s.volume[c] * cells.volume[c] * r.cell_coefficient[c];
+      const double share = w.weights[k] * v / cells.solid_volume[c] * gas.volume[c] * cells.coefficient[c];
       for (int a = 0; a < 3; ++a)
-        r.particle_drag[3 * i + a] += share * (cells.velocity[3 * c + a] - r.cell_solid_velocity[3 * c + a]);
+        r.particle_drag[3 * i + a] += share * (gas.velocity[3 * c + a] - cells.solid_velocity[3 * c + a]);
     }
   }
 }
@@ -76,29 +39,11 @@ std::vector<double> per_particle_drag(const ParticleView &p, const GasAtParticle
   return coefficient;
 }
 
-// Conservative gas sink: K_c = sum_i w_ic V_i beta_i/eps_s,i / V_c and U_s,c chosen so that
-// V_c K_c (u_c - U_s,c) = sum_i w_ic f_i exactly.
-void conservative_gas_side(const CellWeights &w, const std::vector<double> &coefficient, const CellGas &cells,
-                           TransferResult &r) {
-  std::vector<double> force_sum(3 * cells.cell_count, 0.0);
-  for (std::size_t i = 0; i < coefficient.size(); ++i)
-    for (std::size_t k = w.offsets[i]; k < w.offsets[i + 1]; ++k) {
-      const int c = w.cells[k];
-      r.cell_coefficient[c] += w.weights[k] * coefficient[i];
-      for (int a = 0; a < 3; ++a) force_sum[3 * c + a] += w.weights[k] * r.particle_drag[3 * i + a];
-    }
-  for (std::size_t c = 0; c < cells.cell_count; ++c) {
-    if (r.cell_coefficient[c] <= 0.0) continue;
-    const double total = r.cell_coefficient[c];  // sum of V_i beta_i/eps_s,i shares (N s/m)
-    r.cell_coefficient[c] = total / cells.volume[c];
-    for (int a = 0; a < 3; ++a)
-      r.cell_solid_velocity[3 * c + a] = cells.velocity[3 * c + a] - force_sum[3 * c + a] / total;
-  }
-}
-
-// Fluid force of eq. 28 and the momentum bookkeeping.
-void finish(const ParticleView &p, const CellGas &cells, const GasAtParticles &g, TransferResult &r) {
+// Fluid force of eq. 28 and the particle part of the momentum bookkeeping.
+void particle_force(const ParticleView &p, const GasAtParticles &g, TransferResult &r) {
   r.particle_force = r.particle_drag;
+  r.momentum_imbalance = {0.0, 0.0, 0.0};
+  r.drag_magnitude_sum = 0.0;
   for (std::size_t i = 0; i < p.count; ++i) {
     const double v = sphere_volume(p.diameter[i]);
     for (int a = 0; a < 3; ++a) {
@@ -108,10 +53,6 @@ void finish(const ParticleView &p, const CellGas &cells, const GasAtParticles &g
     }
     r.drag_magnitude_sum += norm3(&r.particle_drag[3 * i]);
   }
-  for (std::size_t c = 0; c < cells.cell_count; ++c)
-    for (int a = 0; a < 3; ++a)
-      r.momentum_imbalance[a] -= cells.volume[c] * r.cell_coefficient[c] *
-                                 (cells.velocity[3 * c + a] - r.cell_solid_velocity[3 * c + a]);
 }
 
 }  // namespace
@@ -125,26 +66,121 @@ TransferMethod transfer_method_from_name(const std::string &name) {
   return static_cast<TransferMethod>(index_of_name(name, transfer_method_names(), "transfer method"));
 }
 
+void accumulate_solid_sums(const CellWeights &w, const ParticleView &p, std::size_t cell_count,
+                           std::vector<double> &sums) {
+  constexpr int n = kSolidSumComponents;
+  sums.assign(n * cell_count, 0.0);
+  for (std::size_t i = 0; i < p.count; ++i) {
+    const double d = p.diameter[i], v = sphere_volume(d);
+    for (std::size_t k = w.offsets[i]; k < w.offsets[i + 1]; ++k) {
+      double *s = &sums[n * w.cells[k]];
+      const double wv = w.weights[k] * v;
+      s[0] += wv;
+      for (int a = 0; a < 3; ++a) s[1 + a] += wv * p.velocity[3 * i + a];
+      s[4] += w.weights[k] * d * d * d;
+      s[5] += w.weights[k] * d * d;
+    }
+  }
+}
+
+void map_gas_fraction_from_sums(const std::vector<double> &sums, const std::vector<double> &cell_volume,
+                                double floor, GasFraction &out) {
+  const std::size_t n = cell_volume.size();
+  if (sums.size() != kSolidSumComponents * n)
+    throw std::invalid_argument("map_gas_fraction_from_sums: sums are for a different number of cells");
+  out.solid_volume.resize(n);
+  for (std::size_t c = 0; c < n; ++c) out.solid_volume[c] = sums[kSolidSumComponents * c];
+  gas_fraction_from_solid_volume(cell_volume, floor, out);
+}
+
+void averaged_cell_drag(const std::vector<double> &sums, const CellGas &cells, const TransferOptions &o,
+                        double *coefficient, double *solid_velocity) {
+  for (std::size_t c = 0; c < cells.cell_count; ++c) {
+    const double *s = &sums[kSolidSumComponents * c];
+    coefficient[c] = 0.0;
+    for (int a = 0; a < 3; ++a) solid_velocity[3 * c + a] = 0.0;
+    if (s[0] <= 0.0) continue;
+    double slip[3];
+    for (int a = 0; a < 3; ++a) {
+      solid_velocity[3 * c + a] = s[1 + a] / s[0];
+      slip[a] = cells.velocity[3 * c + a] - solid_velocity[3 * c + a];
+    }
+    const double sauter = s[4] / s[5];
+    coefficient[c] = drag::beta(o.law, {cells.gas_fraction[c], sauter, norm3(slip)}, o.gas);
+  }
+}
+
+std::vector<double> particle_drag_and_force(const CellWeights &weights, const ParticleView &particles,
+                                            const CellSolidsState &cells, const GasAtParticles &at_particles,
+                                            const TransferOptions &options, TransferResult &r) {
+  if (weights.particle_count() != particles.count)
+    throw std::invalid_argument("transfer: weights are for a different number of particles");
+  r.particle_drag.assign(3 * particles.count, 0.0);
+  std::vector<double> coefficient;
+  if (options.method == TransferMethod::Averaged)
+    averaged_particle_drag(weights, particles, cells, r);
+  else
+    coefficient = per_particle_drag(particles, at_particles, options, r);
+  particle_force(particles, at_particles, r);
+  return coefficient;
+}
+
+void accumulate_conservative_sums(const CellWeights &w, const std::vector<double> &particle_coefficient,
+                                  const std::vector<double> &particle_drag, std::size_t cell_count,
+                                  std::vector<double> &sums) {
+  constexpr int n = kConservativeSumComponents;
+  sums.assign(n * cell_count, 0.0);
+  for (std::size_t i = 0; i < particle_coefficient.size(); ++i)
+    for (std::size_t k = w.offsets[i]; k < w.offsets[i + 1]; ++k) {
+      double *s = &sums[n * w.cells[k]];
+      s[0] += w.weights[k] * particle_coefficient[i];
+      for (int a = 0; a < 3; ++a) s[1 + a] += w.weights[k] * particle_drag[3 * i + a];
+    }
+}
+
+void conservative_cell_drag(const std::vector<double> &sums, const CellGas &cells, double *coefficient,
+                            double *solid_velocity) {
+  for (std::size_t c = 0; c < cells.cell_count; ++c) {
+    const double *s = &sums[kConservativeSumComponents * c];
+    const double total = s[0];  // sum of V_i beta_i/eps_s,i shares (N s/m)
+    coefficient[c] = 0.0;
+    for (int a = 0; a < 3; ++a) solid_velocity[3 * c + a] = 0.0;
+    if (total <= 0.0) continue;
+    coefficient[c] = total / cells.volume[c];
+    for (int a = 0; a < 3; ++a) solid_velocity[3 * c + a] = cells.velocity[3 * c + a] - s[1 + a] / total;
+  }
+}
+
+std::array<double, 3> gas_drag_sink(const CellGas &cells, const double *coefficient, const double *solid_velocity) {
+  std::array<double, 3> sink{0.0, 0.0, 0.0};
+  for (std::size_t c = 0; c < cells.cell_count; ++c)
+    for (int a = 0; a < 3; ++a)
+      sink[a] += cells.volume[c] * coefficient[c] * (cells.velocity[3 * c + a] - solid_velocity[3 * c + a]);
+  return sink;
+}
+
 void transfer(const CellWeights &weights, const ParticleView &particles, const CellGas &cells,
               const GasAtParticles &at_particles, const TransferOptions &options, TransferResult &r) {
   if (weights.particle_count() != particles.count)
     throw std::invalid_argument("transfer: weights are for a different number of particles");
-  r.momentum_imbalance = {0.0, 0.0, 0.0};
-  r.drag_magnitude_sum = 0.0;
-  r.particle_drag.assign(3 * particles.count, 0.0);
-  r.cell_coefficient.assign(cells.cell_count, 0.0);
-  r.cell_solid_velocity.assign(3 * cells.cell_count, 0.0);
-  if (options.method == TransferMethod::PerParticleConservative) {
-    conservative_gas_side(weights, per_particle_drag(particles, at_particles, options, r), cells, r);
-  } else {
-    const CellSolids solids = accumulate_solids(weights, particles, cells.cell_count);
-    averaged_gas_side(solids, cells, options, r);
-    if (options.method == TransferMethod::Averaged)
-      averaged_particle_side(weights, particles, solids, cells, r);
-    else
-      per_particle_drag(particles, at_particles, options, r);
+  const std::size_t n = cells.cell_count;
+  r.cell_coefficient.assign(n, 0.0);
+  r.cell_solid_velocity.assign(3 * n, 0.0);
+  std::vector<double> sums;
+  accumulate_solid_sums(weights, particles, n, sums);
+  const bool conservative = options.method == TransferMethod::PerParticleConservative;
+  if (!conservative) averaged_cell_drag(sums, cells, options, r.cell_coefficient.data(), r.cell_solid_velocity.data());
+  std::vector<double> solid_volume(n);
+  for (std::size_t c = 0; c < n; ++c) solid_volume[c] = sums[kSolidSumComponents * c];
+  const CellSolidsState state{cells, solid_volume.data(), r.cell_coefficient.data(), r.cell_solid_velocity.data()};
+  const std::vector<double> coefficient =
+      particle_drag_and_force(weights, particles, state, at_particles, options, r);
+  if (conservative) {
+    accumulate_conservative_sums(weights, coefficient, r.particle_drag, n, sums);
+    conservative_cell_drag(sums, cells, r.cell_coefficient.data(), r.cell_solid_velocity.data());
   }
-  finish(particles, cells, at_particles, r);
+  const std::array<double, 3> sink = gas_drag_sink(cells, r.cell_coefficient.data(), r.cell_solid_velocity.data());
+  for (int a = 0; a < 3; ++a) r.momentum_imbalance[a] -= sink[a];
 }
 
 TransferResult transfer(const CellWeights &weights, const ParticleView &particles, const CellGas &cells,

@@ -209,18 +209,11 @@ CellWeights centroid_weights(const int *cell_of_particle, std::size_t count) {
   return w;
 }
 
-void map_gas_fraction(const CellWeights &weights, const ParticleView &particles,
-                      const std::vector<double> &cell_volume, double floor, GasFraction &out) {
+void gas_fraction_from_solid_volume(const std::vector<double> &cell_volume, double floor, GasFraction &out) {
   if (!(floor >= 0.0 && floor < 1.0))
     throw std::invalid_argument("gas fraction floor must be in [0, 1), got " + std::to_string(floor));
-  out.solid_volume.assign(cell_volume.size(), 0.0);
   out.floored_cells = 0;
   out.lowest_unfloored = 1.0;
-  for (std::size_t p = 0; p < particles.count; ++p) {
-    const double volume = sphere_volume(particles.diameter[p]);
-    for (std::size_t k = weights.offsets[p]; k < weights.offsets[p + 1]; ++k)
-      out.solid_volume[weights.cells[k]] += weights.weights[k] * volume;
-  }
   out.gas_fraction.resize(cell_volume.size());
   for (std::size_t c = 0; c < cell_volume.size(); ++c) {
     const double eps = 1.0 - out.solid_volume[c] / cell_volume[c];
@@ -228,6 +221,35 @@ void map_gas_fraction(const CellWeights &weights, const ParticleView &particles,
     if (eps < floor) ++out.floored_cells;
     out.gas_fraction[c] = std::max(eps, floor);
   }
+}
+
+void map_gas_fraction(const CellWeights &weights, const ParticleView &particles,
+                      const std::vector<double> &cell_volume, double floor, GasFraction &out) {
+  out.solid_volume.assign(cell_volume.size(), 0.0);
+  for (std::size_t p = 0; p < particles.count; ++p) {
+    const double volume = sphere_volume(particles.diameter[p]);
+    for (std::size_t k = weights.offsets[p]; k < weights.offsets[p + 1]; ++k)
+      out.solid_volume[weights.cells[k]] += weights.weights[k] * volume;
+  }
+  gas_fraction_from_solid_volume(cell_volume, floor, out);
+}
+
+std::vector<int> compact_cells(CellWeights &weights, std::vector<int> &scratch) {
+  if (scratch.empty() && !weights.cells.empty())
+    scratch.assign(*std::max_element(weights.cells.begin(), weights.cells.end()) + 1, -1);
+  std::vector<int> original;
+  for (int &c : weights.cells) {
+    if (c < 0 || static_cast<std::size_t>(c) >= scratch.size())
+      throw std::out_of_range("compact_cells: cell " + std::to_string(c) + " outside the scratch of " +
+                              std::to_string(scratch.size()) + " cells");
+    if (scratch[c] < 0) {
+      scratch[c] = static_cast<int>(original.size());
+      original.push_back(c);
+    }
+    c = scratch[c];
+  }
+  for (int c : original) scratch[c] = -1;
+  return original;
 }
 
 GasFraction map_gas_fraction(const CellWeights &weights, const ParticleView &particles,

@@ -76,6 +76,62 @@ void transfer(const CellWeights &weights, const ParticleView &particles, const C
 TransferResult transfer(const CellWeights &weights, const ParticleView &particles, const CellGas &cells,
                         const GasAtParticles &at_particles, const TransferOptions &options);
 
+// ---------------------------------------------------------------------------------------
+// Staged form of transfer(), for particles and cells held by different MPI ranks (the
+// cell_exchange layer moves the per-cell arrays). Cell indices are those of `weights`
+// (e.g. compact indices after compact_cells()); transfer() is these stages on one rank.
+//   1. particle side: accumulate_solid_sums (additive over ranks, summed at cell owners);
+//   2. cell side: map_gas_fraction_from_sums and, unless conservative, averaged_cell_drag;
+//   3. particle side, with the completed cell data of its cells: particle_drag_and_force;
+//   4. conservative only: accumulate_conservative_sums (additive) then conservative_cell_drag.
+
+// Per-cell particle sums of stage 1, kSolidSumComponents values per cell: solid volume
+// sum_i w_ic V_i (eq. 34 numerator), sum_i w_ic V_i v_i (3, eq. 35 numerator), and the
+// Sauter-mean sums sum_i w_ic d_i^3, sum_i w_ic d_i^2.
+constexpr int kSolidSumComponents = 6;
+void accumulate_solid_sums(const CellWeights &weights, const ParticleView &particles, std::size_t cell_count,
+                           std::vector<double> &sums);
+
+// Gas fraction per cell from completed solid sums (as map_gas_fraction).
+void map_gas_fraction_from_sums(const std::vector<double> &sums, const std::vector<double> &cell_volume,
+                                double floor, GasFraction &out);
+
+// Averaged gas sink (eq. 33, 35) from completed solid sums: K_c = beta_c and U_s,c = v_sm,c
+// (zero in cells without particles); `coefficient` 1 and `solid_velocity` 3 per cell.
+void averaged_cell_drag(const std::vector<double> &sums, const CellGas &cells, const TransferOptions &options,
+                        double *coefficient, double *solid_velocity);
+
+// Completed cell data a particle's drag needs (cell_count entries; vectors 3 per cell).
+struct CellSolidsState {
+  CellGas gas;
+  const double *solid_volume = nullptr;    // sum_i w_ic V_i over all particles
+  const double *coefficient = nullptr;     // K_c of averaged_cell_drag (averaged method)
+  const double *solid_velocity = nullptr;  // v_sm,c of averaged_cell_drag (averaged method)
+};
+
+// Stage 3: eps_g f_d (out.particle_drag) and the eq. 28 force (out.particle_force) of each
+// particle, sum_i |eps_g f_d,i| and sum_i eps_g f_d,i (out.momentum_imbalance, the particle
+// part). Returns V_i beta_i / eps_s,i per particle for the per-particle methods (empty for
+// averaged).
+std::vector<double> particle_drag_and_force(const CellWeights &weights, const ParticleView &particles,
+                                            const CellSolidsState &cells, const GasAtParticles &at_particles,
+                                            const TransferOptions &options, TransferResult &out);
+
+// Conservative sums per cell, kConservativeSumComponents values: sum_i w_ic V_i beta_i/eps_s,i
+// and sum_i w_ic eps_g f_d,i (3).
+constexpr int kConservativeSumComponents = 4;
+void accumulate_conservative_sums(const CellWeights &weights, const std::vector<double> &particle_coefficient,
+                                  const std::vector<double> &particle_drag, std::size_t cell_count,
+                                  std::vector<double> &sums);
+
+// Conservative gas sink from completed sums: K_c = sum / V_c and U_s,c such that
+// V_c K_c (u_c - U_s,c) = sum_i w_ic eps_g f_d,i exactly.
+void conservative_cell_drag(const std::vector<double> &sums, const CellGas &cells, double *coefficient,
+                            double *solid_velocity);
+
+// Drag the gas loses, sum_c V_c K_c (u_c - U_s,c) (N).
+std::array<double, 3> gas_drag_sink(const CellGas &cells, const double *coefficient, const double *solid_velocity);
+
 // Weighted average of a cell field at each particle, sum_c w_ic phi_c (seed 001 eq. 38 with
 // the mapping weights); `components` values per cell and per particle.
 std::vector<double> average_to_particles(const CellWeights &weights, const double *cell_field,

@@ -80,6 +80,13 @@ void map_gas_fraction(const CellWeights &weights, const ParticleView &particles,
 GasFraction map_gas_fraction(const CellWeights &weights, const ParticleView &particles,
                              const std::vector<double> &cell_volume, double floor);
 
+// Gas fraction max(1 - out.solid_volume / V_cell, floor) per cell from out.solid_volume
+// (already filled), with the floor statistics.
+void gas_fraction_from_solid_volume(const std::vector<double> &cell_volume, double floor, GasFraction &out);
+// Renumber weights.cells to 0 .. n-1 over the n distinct cells used, in order of first use,
+// and return the original index of each. `scratch` (one entry per original cell, all -1, or
+// empty: it is then sized to the largest index) is left all -1 again, so the pass is O(weights).
+std::vector<int> compact_cells(CellWeights &weights, std::vector<int> &scratch);
 // Cell volumes of `grid`: V = dx dy dz; under the 2-D rule the depth is `depth_2d` (= d_p).
 std::vector<double> cell_volumes(const CartesianGrid &grid, bool two_dimensional, double depth_2d);
 
