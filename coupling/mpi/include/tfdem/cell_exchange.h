@@ -1,0 +1,62 @@
+// The MPI layer of the coupling core: moves per-cell arrays between the ranks that hold
+// particles and the ranks that own the cells they touch. Only the cells a rank's particles
+// touch travel (a sparse halo), never all particles or all cells: each coupling step a rank
+// sums its particles' contributions into its halo cells, sends each halo cell's values to
+// the cell's owner (sum_to_owners), and fetches the owners' completed values back
+// (fetch_from_owners). With one rank both are copies.
+#ifndef TFDEM_CELL_EXCHANGE_H
+#define TFDEM_CELL_EXCHANGE_H
+
+#include <mpi.h>
+
+#include <cstddef>
+#include <vector>
+
+namespace tfdem {
+
+class CellExchange {
+ public:
+  // `owner_of_cell[g]`: rank owning global cell g (the same table on every rank);
+  // `owned_cells`: the global index of each of this rank's cells, in its local order.
+  CellExchange(MPI_Comm comm, std::vector<int> owner_of_cell, const std::vector<int> &owned_cells);
+  CellExchange(const CellExchange &) = delete;
+  CellExchange &operator=(const CellExchange &) = delete;
+  ~CellExchange();
+
+  // Collective: this rank's particles touch the global cells `halo_cells` (distinct); the
+  // halo arrays below have one record per entry, in this order.
+  void set_halo(const std::vector<int> &halo_cells);
+  // Collective: add each halo cell's `components` values into its owner's `owned_values`
+  // (components per owned cell, local order; zeroed first). Contributions are added in
+  // rank order, so the result does not depend on message timing.
+  void sum_to_owners(const std::vector<double> &halo_values, int components, std::vector<double> &owned_values);
+  // Collective: each halo cell's `components` values from its owner's `owned_values`.
+  void fetch_from_owners(const std::vector<double> &owned_values, int components, std::vector<double> &halo_values);
+
+  std::size_t owned_count() const { return owned_count_; }
+  std::size_t halo_count() const { return halo_size_; }
+  // Halo records received from other ranks in the last set_halo (a measure of traffic).
+  std::size_t remote_records() const { return remote_records_; }
+
+ private:
+  // Alltoallv of `components` doubles per record.
+  void exchange(const std::vector<double> &send, const std::vector<int> &send_records,
+                std::vector<double> &receive, const std::vector<int> &receive_records, int components);
+
+  MPI_Comm comm_ = MPI_COMM_NULL;
+  int rank_ = 0, size_ = 1;
+  std::vector<int> owner_of_cell_;
+  std::vector<int> local_of_cell_;  // local index of each global cell owned here, else -1
+  std::size_t owned_count_ = 0;
+  std::size_t halo_size_ = 0;
+  std::size_t remote_records_ = 0;
+  std::vector<int> send_order_;       // halo entries grouped by owner rank
+  std::vector<int> send_counts_;      // records per destination rank
+  std::vector<int> receive_counts_;   // records per source rank
+  std::vector<int> received_local_;   // owned local cell of each received record
+  std::vector<double> send_buffer_, receive_buffer_;
+};
+
+}  // namespace tfdem
+
+#endif

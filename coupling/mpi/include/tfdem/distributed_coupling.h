@@ -1,0 +1,82 @@
+// One coupling step of the core across MPI ranks: particles on the ranks the DEM put them,
+// cells on the ranks the gas solver put them. Each rank maps its own particles onto the
+// global grid, sends the per-cell sums of the cells they touch to those cells' owners
+// (CellExchange), and fetches back the completed cell data it needs for its particles'
+// forces. No rank ever holds other ranks' particles. With one rank this is transfer().
+//
+// Per step: map() (void fraction on owned cells) then forces() (particle fluid forces,
+// seed 000 eq. 28, and the gas sink K, U_s on owned cells, for the method of the options).
+#ifndef TFDEM_DISTRIBUTED_COUPLING_H
+#define TFDEM_DISTRIBUTED_COUPLING_H
+
+#include <mpi.h>
+
+#include <array>
+#include <cstddef>
+#include <vector>
+
+#include "tfdem/cell_exchange.h"
+#include "tfdem/grid.h"
+#include "tfdem/particles.h"
+#include "tfdem/transfer.h"
+#include "tfdem/void_fraction.h"
+
+namespace tfdem {
+
+// Totals over all ranks from the last step.
+struct CouplingTotals {
+  std::size_t floored_cells = 0;     // cells where the gas-fraction floor was used
+  double lowest_unfloored = 1.0;     // smallest eps before the floor
+  double particle_volume = 0.0;      // sum_i V_i
+  double mapped_volume = 0.0;        // sum_c (1 - eps_c) V_c
+  std::array<double, 3> momentum_imbalance{};  // sum_i eps_g f_d,i - sum_c V_c K_c (u_c - U_s,c)
+  double drag_magnitude_sum = 0.0;   // sum_i |eps_g f_d,i|
+};
+
+class DistributedCoupling {
+ public:
+  // `grid`: the global grid; `owner_of_cell[g]`: rank owning grid cell g; `owned_cells`:
+  // this rank's grid cells in its local order, with their volumes `owned_volume`.
+  DistributedCoupling(MPI_Comm comm, const CartesianGrid &grid, std::vector<int> owner_of_cell,
+                      const std::vector<int> &owned_cells, std::vector<double> owned_volume,
+                      const VoidFractionOptions &void_fraction, const TransferOptions &transfer);
+
+  // Collective: weights of this rank's particles, and eps_g of the owned cells. Throws
+  // std::out_of_range (on the rank holding it) for a particle outside the grid.
+  void map(const ParticleView &particles);
+  // Collective, after map() with the same particles: `gas_velocity` (3 per owned cell) and,
+  // when not null, `pressure_gradient` (3 per owned cell, then eq. 28 includes -V_i grad p).
+  void forces(const ParticleView &particles, const double *gas_velocity, const double *pressure_gradient);
+
+  // Per owned cell, after map(): eps_g; after forces(): K_c and U_s,c (3 per cell).
+  const std::vector<double> &gas_fraction() const { return gas_.gas_fraction; }
+  const std::vector<double> &coefficient() const { return coefficient_; }
+  const std::vector<double> &solid_velocity() const { return solid_velocity_; }
+  // Per local particle, after forces(): eq. 28 fluid force (3 per particle).
+  const std::vector<double> &particle_force() const { return result_.particle_force; }
+  const CouplingTotals &totals() const { return totals_; }
+  const CellExchange &exchange() const { return exchange_; }
+
+ private:
+  // Sum over ranks of `values` in place.
+  void sum_over_ranks(double *values, int count) const;
+
+  MPI_Comm comm_;
+  CartesianGrid grid_;
+  CellExchange exchange_;
+  std::vector<double> owned_volume_;
+  VoidFractionOptions void_fraction_;
+  TransferOptions transfer_;
+
+  CellWeights weights_;
+  std::vector<int> scratch_, halo_cells_;
+  std::vector<double> halo_sums_, owned_sums_, halo_state_, owned_state_;
+  GasFraction gas_;
+  std::vector<double> coefficient_, solid_velocity_;
+  TransferResult result_;
+  CouplingTotals totals_;
+};
+
+}  // namespace tfdem
+
+#endif

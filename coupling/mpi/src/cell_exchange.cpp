@@ -1,0 +1,114 @@
+#include "tfdem/cell_exchange.h"
+
+#include <algorithm>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+
+namespace tfdem {
+
+namespace {
+
+// Displacements (prefix sums) of `counts` scaled by `components`.
+std::vector<int> displacements(const std::vector<int> &counts, int components, std::vector<int> &scaled) {
+  scaled.resize(counts.size());
+  std::vector<int> offsets(counts.size(), 0);
+  for (std::size_t r = 0; r < counts.size(); ++r) {
+    scaled[r] = counts[r] * components;
+    if (r > 0) offsets[r] = offsets[r - 1] + scaled[r - 1];
+  }
+  return offsets;
+}
+
+}  // namespace
+
+CellExchange::CellExchange(MPI_Comm comm, std::vector<int> owner_of_cell, const std::vector<int> &owned_cells)
+    : owner_of_cell_(std::move(owner_of_cell)), owned_count_(owned_cells.size()) {
+  MPI_Comm_dup(comm, &comm_);
+  MPI_Comm_rank(comm_, &rank_);
+  MPI_Comm_size(comm_, &size_);
+  local_of_cell_.assign(owner_of_cell_.size(), -1);
+  for (std::size_t l = 0; l < owned_cells.size(); ++l) {
+    const int g = owned_cells[l];
+    if (g < 0 || static_cast<std::size_t>(g) >= owner_of_cell_.size() || owner_of_cell_[g] != rank_)
+      throw std::invalid_argument("CellExchange: rank " + std::to_string(rank_) + " lists cell " +
+                                  std::to_string(g) + " that the owner table does not give it");
+    local_of_cell_[g] = static_cast<int>(l);
+  }
+  send_counts_.assign(size_, 0);
+  receive_counts_.assign(size_, 0);
+}
+
+CellExchange::~CellExchange() {
+  int finalized = 0;
+  MPI_Finalized(&finalized);
+  if (!finalized) MPI_Comm_free(&comm_);
+}
+
+void CellExchange::set_halo(const std::vector<int> &halo_cells) {
+  halo_size_ = halo_cells.size();
+  std::fill(send_counts_.begin(), send_counts_.end(), 0);
+  for (int g : halo_cells) {
+    if (g < 0 || static_cast<std::size_t>(g) >= owner_of_cell_.size())
+      throw std::out_of_range("CellExchange: halo cell " + std::to_string(g) + " is not a grid cell");
+    ++send_counts_[owner_of_cell_[g]];
+  }
+  std::vector<int> next(size_, 0);
+  for (int r = 1; r < size_; ++r) next[r] = next[r - 1] + send_counts_[r - 1];
+  send_order_.resize(halo_cells.size());
+  for (std::size_t h = 0; h < halo_cells.size(); ++h) send_order_[next[owner_of_cell_[halo_cells[h]]]++] = static_cast<int>(h);
+
+  MPI_Alltoall(send_counts_.data(), 1, MPI_INT, receive_counts_.data(), 1, MPI_INT, comm_);
+  std::vector<int> send_cells(halo_cells.size());
+  for (std::size_t k = 0; k < send_order_.size(); ++k) send_cells[k] = halo_cells[send_order_[k]];
+  std::vector<int> send_scaled, receive_scaled;
+  const std::vector<int> send_offsets = displacements(send_counts_, 1, send_scaled);
+  const std::vector<int> receive_offsets = displacements(receive_counts_, 1, receive_scaled);
+  const int received = std::accumulate(receive_counts_.begin(), receive_counts_.end(), 0);
+  std::vector<int> receive_cells(received);
+  MPI_Alltoallv(send_cells.data(), send_scaled.data(), send_offsets.data(), MPI_INT, receive_cells.data(),
+                receive_scaled.data(), receive_offsets.data(), MPI_INT, comm_);
+  received_local_.resize(received);
+  for (int k = 0; k < received; ++k) received_local_[k] = local_of_cell_[receive_cells[k]];
+  remote_records_ = static_cast<std::size_t>(received - receive_counts_[rank_]);
+}
+
+void CellExchange::exchange(const std::vector<double> &send, const std::vector<int> &send_records,
+                            std::vector<double> &receive, const std::vector<int> &receive_records, int components) {
+  std::vector<int> send_scaled, receive_scaled;
+  const std::vector<int> send_offsets = displacements(send_records, components, send_scaled);
+  const std::vector<int> receive_offsets = displacements(receive_records, components, receive_scaled);
+  receive.resize(std::accumulate(receive_scaled.begin(), receive_scaled.end(), std::size_t{0}));
+  MPI_Alltoallv(send.data(), send_scaled.data(), send_offsets.data(), MPI_DOUBLE, receive.data(),
+                receive_scaled.data(), receive_offsets.data(), MPI_DOUBLE, comm_);
+}
+
+void CellExchange::sum_to_owners(const std::vector<double> &halo_values, int components,
+                                 std::vector<double> &owned_values) {
+  if (halo_values.size() != halo_size_ * components)
+    throw std::invalid_argument("CellExchange::sum_to_owners: halo values are not for the halo of set_halo");
+  send_buffer_.resize(halo_values.size());
+  for (std::size_t k = 0; k < send_order_.size(); ++k)
+    for (int a = 0; a < components; ++a) send_buffer_[components * k + a] = halo_values[components * send_order_[k] + a];
+  exchange(send_buffer_, send_counts_, receive_buffer_, receive_counts_, components);
+  owned_values.assign(owned_count_ * components, 0.0);
+  for (std::size_t k = 0; k < received_local_.size(); ++k)
+    for (int a = 0; a < components; ++a)
+      owned_values[components * received_local_[k] + a] += receive_buffer_[components * k + a];
+}
+
+void CellExchange::fetch_from_owners(const std::vector<double> &owned_values, int components,
+                                     std::vector<double> &halo_values) {
+  if (owned_values.size() != owned_count_ * components)
+    throw std::invalid_argument("CellExchange::fetch_from_owners: owned values are not one record per owned cell");
+  receive_buffer_.resize(received_local_.size() * components);
+  for (std::size_t k = 0; k < received_local_.size(); ++k)
+    for (int a = 0; a < components; ++a)
+      receive_buffer_[components * k + a] = owned_values[components * received_local_[k] + a];
+  exchange(receive_buffer_, receive_counts_, send_buffer_, send_counts_, components);
+  halo_values.resize(halo_size_ * components);
+  for (std::size_t k = 0; k < send_order_.size(); ++k)
+    for (int a = 0; a < components; ++a) halo_values[components * send_order_[k] + a] = send_buffer_[components * k + a];
+}
+
+}  // namespace tfdem

@@ -1,0 +1,147 @@
+#include "tfdem/distributed_coupling.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+namespace tfdem {
+
+namespace {
+
+// Per owned cell, what a particle rank fetches: u_g (3), eps_g, K_c, U_s,c (3), solid volume,
+// V_c, grad p (3).
+constexpr int kStateComponents = 13;
+
+// Throw the same std::out_of_range on every rank when `message` is set on any of them (the
+// lowest such rank's message), so no rank is left waiting in a collective call.
+void throw_if_any_rank_failed(MPI_Comm comm, const std::string &message) {
+  int rank = 0, size = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &size);
+  const int mine = message.empty() ? size : rank;
+  int first = size;
+  MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, comm);
+  if (first == size) return;
+  int length = static_cast<int>(message.size());
+  MPI_Bcast(&length, 1, MPI_INT, first, comm);
+  std::string text = message;
+  text.resize(length);
+  MPI_Bcast(text.data(), length, MPI_CHAR, first, comm);
+  throw std::out_of_range(text);
+}
+
+}  // namespace
+
+DistributedCoupling::DistributedCoupling(MPI_Comm comm, const CartesianGrid &grid, std::vector<int> owner_of_cell,
+                                         const std::vector<int> &owned_cells, std::vector<double> owned_volume,
+                                         const VoidFractionOptions &void_fraction, const TransferOptions &transfer)
+    : comm_(comm),
+      grid_(grid),
+      exchange_(comm, std::move(owner_of_cell), owned_cells),
+      owned_volume_(std::move(owned_volume)),
+      void_fraction_(void_fraction),
+      transfer_(transfer) {
+  if (owned_volume_.size() != owned_cells.size())
+    throw std::invalid_argument("DistributedCoupling: one volume per owned cell expected");
+  scratch_.assign(grid_.cell_count(), -1);
+  coefficient_.assign(owned_volume_.size(), 0.0);
+  solid_velocity_.assign(3 * owned_volume_.size(), 0.0);
+}
+
+void DistributedCoupling::sum_over_ranks(double *values, int count) const {
+  MPI_Allreduce(MPI_IN_PLACE, values, count, MPI_DOUBLE, MPI_SUM, comm_);
+}
+
+void DistributedCoupling::map(const ParticleView &particles) {
+  std::string failure;
+  try {
+    compute_weights(grid_, particles, void_fraction_, weights_);
+  } catch (const std::out_of_range &e) {
+    failure = e.what();
+  }
+  throw_if_any_rank_failed(comm_, failure);
+  halo_cells_ = compact_cells(weights_, scratch_);
+  exchange_.set_halo(halo_cells_);
+  accumulate_solid_sums(weights_, particles, halo_cells_.size(), halo_sums_);
+  exchange_.sum_to_owners(halo_sums_, kSolidSumComponents, owned_sums_);
+  map_gas_fraction_from_sums(owned_sums_, owned_volume_, void_fraction_.gas_fraction_floor, gas_);
+
+  totals_.particle_volume = 0.0;
+  for (std::size_t i = 0; i < particles.count; ++i) totals_.particle_volume += sphere_volume(particles.diameter[i]);
+  totals_.mapped_volume = 0.0;
+  for (std::size_t c = 0; c < owned_volume_.size(); ++c) totals_.mapped_volume += gas_.solid_volume[c];
+  double volumes[2] = {totals_.particle_volume, totals_.mapped_volume};
+  sum_over_ranks(volumes, 2);
+  totals_.particle_volume = volumes[0];
+  totals_.mapped_volume = volumes[1];
+  unsigned long floored = gas_.floored_cells;
+  MPI_Allreduce(MPI_IN_PLACE, &floored, 1, MPI_UNSIGNED_LONG, MPI_SUM, comm_);
+  totals_.floored_cells = floored;
+  totals_.lowest_unfloored = gas_.lowest_unfloored;
+  MPI_Allreduce(MPI_IN_PLACE, &totals_.lowest_unfloored, 1, MPI_DOUBLE, MPI_MIN, comm_);
+}
+
+void DistributedCoupling::forces(const ParticleView &particles, const double *gas_velocity,
+                                 const double *pressure_gradient) {
+  const std::size_t owned = owned_volume_.size(), halo = halo_cells_.size();
+  const CellGas owned_gas{owned, gas_velocity, gas_.gas_fraction.data(), owned_volume_.data()};
+  const bool conservative = transfer_.method == TransferMethod::PerParticleConservative;
+  std::fill(coefficient_.begin(), coefficient_.end(), 0.0);
+  std::fill(solid_velocity_.begin(), solid_velocity_.end(), 0.0);
+  if (!conservative) averaged_cell_drag(owned_sums_, owned_gas, transfer_, coefficient_.data(), solid_velocity_.data());
+
+  owned_state_.resize(kStateComponents * owned);
+  for (std::size_t c = 0; c < owned; ++c) {
+    double *s = &owned_state_[kStateComponents * c];
+    for (int a = 0; a < 3; ++a) {
+      s[a] = gas_velocity[3 * c + a];
+      s[5 + a] = solid_velocity_[3 * c + a];
+      s[10 + a] = pressure_gradient ? pressure_gradient[3 * c + a] : 0.0;
+    }
+    s[3] = gas_.gas_fraction[c];
+    s[4] = coefficient_[c];
+    s[8] = gas_.solid_volume[c];
+    s[9] = owned_volume_[c];
+  }
+  exchange_.fetch_from_owners(owned_state_, kStateComponents, halo_state_);
+
+  std::vector<double> velocity(3 * halo), gas_fraction(halo), coefficient(halo), solid_velocity(3 * halo),
+      solid_volume(halo), volume(halo), gradient(3 * halo);
+  for (std::size_t c = 0; c < halo; ++c) {
+    const double *s = &halo_state_[kStateComponents * c];
+    for (int a = 0; a < 3; ++a) {
+      velocity[3 * c + a] = s[a];
+      solid_velocity[3 * c + a] = s[5 + a];
+      gradient[3 * c + a] = s[10 + a];
+    }
+    gas_fraction[c] = s[3];
+    coefficient[c] = s[4];
+    solid_volume[c] = s[8];
+    volume[c] = s[9];
+  }
+  const CellSolidsState state{{halo, velocity.data(), gas_fraction.data(), volume.data()},
+                              solid_volume.data(), coefficient.data(), solid_velocity.data()};
+  const std::vector<double> velocity_at = average_to_particles(weights_, velocity.data(), 3);
+  const std::vector<double> gas_fraction_at = average_to_particles(weights_, gas_fraction.data(), 1);
+  const std::vector<double> gradient_at =
+      pressure_gradient ? average_to_particles(weights_, gradient.data(), 3) : std::vector<double>();
+  const GasAtParticles at{velocity_at.data(), gas_fraction_at.data(),
+                          pressure_gradient ? gradient_at.data() : nullptr, nullptr};
+  const std::vector<double> particle_coefficient =
+      particle_drag_and_force(weights_, particles, state, at, transfer_, result_);
+
+  if (conservative) {
+    accumulate_conservative_sums(weights_, particle_coefficient, result_.particle_drag, halo, halo_sums_);
+    exchange_.sum_to_owners(halo_sums_, kConservativeSumComponents, owned_sums_);
+    conservative_cell_drag(owned_sums_, owned_gas, coefficient_.data(), solid_velocity_.data());
+  }
+  const std::array<double, 3> sink = gas_drag_sink(owned_gas, coefficient_.data(), solid_velocity_.data());
+  double balance[4];
+  for (int a = 0; a < 3; ++a) balance[a] = result_.momentum_imbalance[a] - sink[a];
+  balance[3] = result_.drag_magnitude_sum;
+  sum_over_ranks(balance, 4);
+  for (int a = 0; a < 3; ++a) totals_.momentum_imbalance[a] = balance[a];
+  totals_.drag_magnitude_sum = balance[3];
+}
+
+}  // namespace tfdem

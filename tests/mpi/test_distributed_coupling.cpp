@@ -1,0 +1,229 @@
+// The core across MPI ranks (cell_exchange, distributed_coupling): run at 1 and 2 ranks, it
+// must give what the serial core gives for all particles on one rank, with particles split
+// between ranks one way (by x) and cells the other way (by y), so most particles sit in cells
+// another rank owns.
+#include <gtest/gtest.h>
+#include <mpi.h>
+
+#include <cmath>
+#include <random>
+
+#include "tfdem/cell_exchange.h"
+#include "tfdem/distributed_coupling.h"
+
+namespace {
+
+using namespace tfdem;
+
+int rank() {
+  int r = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  return r;
+}
+
+int ranks() {
+  int n = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &n);
+  return n;
+}
+
+// Relative difference scaled by `scale`.
+double relative(double a, double b, double scale) { return std::abs(a - b) / scale; }
+
+TEST(CellExchange, SumsAtOwnersAndFetchesBack) {
+  const int cells = 50;
+  std::vector<int> owner(cells), owned;
+  for (int g = 0; g < cells; ++g) owner[g] = (7 * g) % ranks();
+  for (int g = 0; g < cells; ++g)
+    if (owner[g] == rank()) owned.push_back(g);
+  CellExchange exchange(MPI_COMM_WORLD, owner, owned);
+  // Every rank touches every third cell, from a rank-dependent start, in descending order.
+  std::vector<int> halo;
+  for (int g = cells - 1 - rank(); g >= 0; g -= 3) halo.push_back(g);
+  exchange.set_halo(halo);
+  std::vector<double> values;
+  for (int g : halo) values.insert(values.end(), {1.0 * g, 1000.0 + rank()});
+  std::vector<double> sums;
+  exchange.sum_to_owners(values, 2, sums);
+  ASSERT_EQ(sums.size(), 2 * owned.size());
+  for (std::size_t l = 0; l < owned.size(); ++l) {
+    const int g = owned[l];
+    double expected_first = 0.0, expected_second = 0.0;
+    for (int r = 0; r < ranks(); ++r)
+      if ((cells - 1 - r - g) % 3 == 0 && g <= cells - 1 - r) {
+        expected_first += g;
+        expected_second += 1000.0 + r;
+      }
+    EXPECT_EQ(sums[2 * l], expected_first) << "cell " << g;
+    EXPECT_EQ(sums[2 * l + 1], expected_second) << "cell " << g;
+  }
+  std::vector<double> owned_values;
+  for (int g : owned) owned_values.push_back(0.5 * g);
+  std::vector<double> fetched;
+  exchange.fetch_from_owners(owned_values, 1, fetched);
+  ASSERT_EQ(fetched.size(), halo.size());
+  for (std::size_t h = 0; h < halo.size(); ++h) EXPECT_EQ(fetched[h], 0.5 * halo[h]);
+}
+
+// A 2-D bed of 6 x 8 cells (1 cm, depth 2.5 mm), particles on a jittered lattice with random
+// velocities and diameters 2.25-2.75 mm, some overlapping the walls; a smooth gas field.
+struct Bed {
+  CartesianGrid grid;
+  std::vector<double> position, velocity, diameter, density, cell_velocity, cell_gradient, cell_volume;
+  Bed() {
+    grid.origin = {0, 0, 0};
+    grid.spacing = {0.01, 0.01, 0.0025};
+    grid.count = {6, 8, 1};
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    for (double x = 0.001; x < 0.06; x += 0.0029)
+      for (double y = 0.001; y < 0.055; y += 0.0031) {
+        position.insert(position.end(), {x + 2e-4 * u(rng), y + 2e-4 * u(rng), 0.00125});
+        velocity.insert(velocity.end(), {0.05 * u(rng), 0.05 * u(rng), 0.0});
+        diameter.push_back(0.0025 * (1.0 + 0.1 * u(rng)));
+        density.push_back(2526.0);
+      }
+    for (int c = 0; c < grid.cell_count(); ++c) {
+      cell_velocity.insert(cell_velocity.end(), {0.1 + 0.01 * (c % 3), 1.5 + 0.05 * (c % 4), 0.0});
+      cell_gradient.insert(cell_gradient.end(), {10.0 * (c % 2), -9000.0 - 100.0 * (c % 5), 0.0});
+    }
+    cell_volume = cell_volumes(grid, true, 0.0025);
+  }
+  ParticleView view() const { return {diameter.size(), position.data(), velocity.data(), diameter.data(), density.data()}; }
+};
+
+struct Case {
+  VoidFractionMethod void_fraction;
+  TransferMethod transfer;
+};
+
+class DistributedCouplingTest : public ::testing::TestWithParam<Case> {};
+
+// Serial reference: the core on one rank with all particles and the whole grid.
+struct Reference {
+  GasFraction fraction;
+  TransferResult result;
+};
+
+Reference serial(const Bed &b, const VoidFractionOptions &vf, const TransferOptions &to) {
+  Reference ref;
+  const CellWeights w = compute_weights(b.grid, b.view(), vf);
+  ref.fraction = map_gas_fraction(w, b.view(), b.cell_volume, vf.gas_fraction_floor);
+  const std::vector<double> u_at = average_to_particles(w, b.cell_velocity.data(), 3);
+  const std::vector<double> eps_at = average_to_particles(w, ref.fraction.gas_fraction.data(), 1);
+  const std::vector<double> grad_at = average_to_particles(w, b.cell_gradient.data(), 3);
+  const CellGas cells{b.cell_volume.size(), b.cell_velocity.data(), ref.fraction.gas_fraction.data(),
+                      b.cell_volume.data()};
+  transfer(w, b.view(), cells, {u_at.data(), eps_at.data(), grad_at.data(), nullptr}, to, ref.result);
+  return ref;
+}
+
+TEST_P(DistributedCouplingTest, EqualsSerialCore) {
+  const Bed b;
+  VoidFractionOptions vf;
+  vf.method = GetParam().void_fraction;
+  vf.two_dimensional = true;
+  TransferOptions to;
+  to.method = GetParam().transfer;
+  to.law = drag::Law::ErgunWenYu;
+  const Reference ref = serial(b, vf, to);
+
+  // Cells to ranks by row (y), particles to ranks by column (x).
+  const int n = b.grid.cell_count();
+  std::vector<int> owner(n), owned;
+  std::vector<double> volume, velocity, gradient;
+  for (int g = 0; g < n; ++g) {
+    owner[g] = (g / b.grid.count[0]) * ranks() / b.grid.count[1];
+    if (owner[g] != rank()) continue;
+    owned.push_back(g);
+    volume.push_back(b.cell_volume[g]);
+    for (int a = 0; a < 3; ++a) {
+      velocity.push_back(b.cell_velocity[3 * g + a]);
+      gradient.push_back(b.cell_gradient[3 * g + a]);
+    }
+  }
+  Bed mine = b;
+  std::vector<std::size_t> index;
+  mine.position.clear(), mine.velocity.clear(), mine.diameter.clear(), mine.density.clear();
+  for (std::size_t i = 0; i < b.diameter.size(); ++i) {
+    const int column = static_cast<int>(b.position[3 * i] / 0.06 * ranks());
+    if (std::min(column, ranks() - 1) != rank()) continue;
+    index.push_back(i);
+    for (int a = 0; a < 3; ++a) {
+      mine.position.push_back(b.position[3 * i + a]);
+      mine.velocity.push_back(b.velocity[3 * i + a]);
+    }
+    mine.diameter.push_back(b.diameter[i]);
+    mine.density.push_back(b.density[i]);
+  }
+
+  DistributedCoupling coupling(MPI_COMM_WORLD, b.grid, owner, owned, volume, vf, to);
+  coupling.map(mine.view());
+  coupling.forces(mine.view(), velocity.data(), gradient.data());
+  if (ranks() > 1) EXPECT_GT(coupling.exchange().remote_records(), 0u) << "no particle in another rank's cell";
+
+  const double eps_tolerance = 1e-13, force_tolerance = 1e-12;  // round-off of reordered sums
+  for (std::size_t l = 0; l < owned.size(); ++l) {
+    const int g = owned[l];
+    EXPECT_NEAR(coupling.gas_fraction()[l], ref.fraction.gas_fraction[g], eps_tolerance) << "cell " << g;
+    const double k_scale = std::max(1.0, std::abs(ref.result.cell_coefficient[g]));
+    EXPECT_LT(relative(coupling.coefficient()[l], ref.result.cell_coefficient[g], k_scale), force_tolerance);
+    for (int a = 0; a < 3; ++a)
+      EXPECT_NEAR(coupling.solid_velocity()[3 * l + a], ref.result.cell_solid_velocity[3 * g + a], 1e-12);
+  }
+  double force_scale = 0.0;
+  for (double f : ref.result.particle_force) force_scale = std::max(force_scale, std::abs(f));
+  for (std::size_t k = 0; k < index.size(); ++k)
+    for (int a = 0; a < 3; ++a)
+      EXPECT_LT(relative(coupling.particle_force()[3 * k + a], ref.result.particle_force[3 * index[k] + a],
+                         force_scale), force_tolerance) << "particle " << index[k];
+
+  const CouplingTotals &t = coupling.totals();
+  double particle_volume = 0.0;
+  for (double d : b.diameter) particle_volume += sphere_volume(d);
+  EXPECT_LT(std::abs(t.particle_volume - particle_volume) / particle_volume, 1e-13);
+  EXPECT_LT(std::abs(t.mapped_volume - particle_volume) / particle_volume, 1e-12);  // sum (1-eps)V = sum V_p
+  for (int a = 0; a < 3; ++a)
+    EXPECT_NEAR(t.momentum_imbalance[a], ref.result.momentum_imbalance[a], 1e-12 * t.drag_magnitude_sum);
+  if (to.method != TransferMethod::PerParticle)  // Newton's third law between the phases
+    for (int a = 0; a < 3; ++a) EXPECT_LT(std::abs(t.momentum_imbalance[a]), 1e-12 * t.drag_magnitude_sum);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    AllMethods, DistributedCouplingTest,
+    ::testing::Values(Case{VoidFractionMethod::Centroid, TransferMethod::Averaged},
+                      Case{VoidFractionMethod::Divided, TransferMethod::Averaged},
+                      Case{VoidFractionMethod::PorousCube, TransferMethod::PerParticle},
+                      Case{VoidFractionMethod::Divided, TransferMethod::PerParticleConservative},
+                      Case{VoidFractionMethod::Centroid, TransferMethod::PerParticleConservative}));
+
+TEST(DistributedCoupling, ParticleOutsideTheGridStopsEveryRank) {
+  const Bed b;
+  const int n = b.grid.cell_count();
+  std::vector<int> owner(n), owned;
+  for (int g = 0; g < n; ++g) {
+    owner[g] = g % ranks();
+    if (owner[g] == rank()) owned.push_back(g);
+  }
+  DistributedCoupling coupling(MPI_COMM_WORLD, b.grid, owner, owned, std::vector<double>(owned.size(), 2.5e-7),
+                               VoidFractionOptions{}, TransferOptions{});
+  Bed mine = b;
+  if (rank() == ranks() - 1) mine.position[1] = 0.2;  // particle 0 above the 8 cm grid
+  try {
+    coupling.map(mine.view());
+    FAIL() << "no error for a particle outside the grid";
+  } catch (const std::out_of_range &e) {
+    EXPECT_NE(std::string(e.what()).find("particle 0"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+
+int main(int argc, char **argv) {
+  MPI_Init(&argc, &argv);
+  ::testing::InitGoogleTest(&argc, argv);
+  int failed = RUN_ALL_TESTS();  // every rank reports; a failure on any rank fails the run
+  MPI_Allreduce(MPI_IN_PLACE, &failed, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+  MPI_Finalize();
+  return failed;
+}
