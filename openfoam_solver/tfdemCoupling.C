@@ -37,7 +37,7 @@ constexpr double geometryTolerance = 1e-9;
 
 bool Foam::TfdemCoupling::caseIsCoupled(const Time& runTime)
 {
-    return isFile(runTime.path()/couplingFileName);
+    return isFile(runTime.globalPath()/couplingFileName);
 }
 
 
@@ -61,7 +61,7 @@ Foam::TfdemCoupling::TfdemCoupling
     Us_(Us),
     wallStart_(std::chrono::steady_clock::now())
 {
-    const fileName configFile(mesh.time().path()/couplingFileName);
+    const fileName configFile(mesh.time().globalPath()/couplingFileName);
     try
     {
         config_ = tfdem::load_coupling_config(configFile);
@@ -73,13 +73,6 @@ Foam::TfdemCoupling::TfdemCoupling
     }
     Info<< tfdem::describe(config_).c_str() << endl;
 
-    if (Pstream::parRun())
-    {
-        FatalErrorInFunction
-            << "the coupled solver runs serially in this version; run tfdemFoam"
-            << " without -parallel for cases with " << couplingFileName
-            << exit(FatalError);
-    }
     int initialised = 0;
     MPI_Initialized(&initialised);
     if (!initialised)
@@ -87,21 +80,22 @@ Foam::TfdemCoupling::TfdemCoupling
         MPI_Init(nullptr, nullptr);
         ownsMpi = true;
     }
+    MPI_Comm_dup(MPI_COMM_WORLD, &demComm_);
 
     checkGasProperties(rho, nu);
-    setUpGrid();
+    createCore(setUpGrid());
     checkTwoDimensionalDepth();
 
-    const fileName script(mesh.time().path()/config_.dem_script);
+    const fileName script(mesh.time().globalPath()/config_.dem_script);
     try
     {
         dem_.reset
         (
             new tfdem::DemInstance
             (
-                MPI_COMM_WORLD,
+                demComm_,
                 script,
-                mesh.time().path()/"log.liggghts"
+                mesh.time().globalPath()/"log.liggghts"
             )
         );
     }
@@ -121,6 +115,8 @@ Foam::TfdemCoupling::TfdemCoupling
 Foam::TfdemCoupling::~TfdemCoupling()
 {
     dem_.reset();
+    core_.reset();
+    MPI_Comm_free(&demComm_);
     if (ownsMpi)
     {
         MPI_Finalize();
@@ -151,47 +147,87 @@ void Foam::TfdemCoupling::checkGasProperties
 }
 
 
-void Foam::TfdemCoupling::setUpGrid()
+Foam::labelList Foam::TfdemCoupling::setUpGrid()
 {
     const boundBox domain(mesh_.points(), true);
     const boundBox firstCell(mesh_.points(), mesh_.cellPoints()[0], false);
+    vector spacing = firstCell.span();
+    reduce(spacing, maxOp<vector>());
     for (direction a = 0; a < 3; ++a)
     {
         grid_.origin[a] = domain.min()[a];
-        grid_.spacing[a] = firstCell.span()[a];
+        grid_.spacing[a] = spacing[a];
         grid_.count[a] = std::lround(domain.span()[a]/grid_.spacing[a]);
     }
-    cellOfGridCell_.assign(grid_.cell_count(), -1);
+    // Every grid cell must be exactly one mesh cell, on exactly one rank.
     const double cellVolume = grid_.cell_volume();
-    bool uniform = (grid_.cell_count() == mesh_.nCells());
+    bool uniform = (returnReduce(mesh_.nCells(), sumOp<label>()) == grid_.cell_count());
+    labelList gridCellOfCell(mesh_.nCells(), -1);
+    std::vector<int> meshCellsInGridCell(uniform ? grid_.cell_count() : 0, 0);
     forAll(mesh_.C(), celli)
     {
         const point& c = mesh_.C()[celli];
         const double x[3] = {c.x(), c.y(), c.z()};
         const int g = uniform ? grid_.locate(x) : -1;
-        if
-        (
-            g < 0 || cellOfGridCell_[g] >= 0
-         || relativeDifference(mesh_.V()[celli], cellVolume) > geometryTolerance
-        )
+        if (g < 0 || relativeDifference(mesh_.V()[celli], cellVolume) > geometryTolerance)
         {
             uniform = false;
             break;
         }
-        cellOfGridCell_[g] = celli;
+        gridCellOfCell[celli] = g;
+        ++meshCellsInGridCell[g];
+    }
+    reduce(uniform, andOp<bool>());
+    if (uniform)
+    {
+        MPI_Allreduce
+        (
+            MPI_IN_PLACE, meshCellsInGridCell.data(), grid_.cell_count(), MPI_INT,
+            MPI_SUM, MPI_COMM_WORLD
+        );
+        for (const int n : meshCellsInGridCell)
+        {
+            uniform = uniform && n == 1;
+        }
     }
     if (!uniform)
     {
         FatalErrorInFunction
             << "the coupled solver needs a uniform Cartesian mesh (one blockMesh"
-            << " block, no grading); this mesh has " << mesh_.nCells()
+            << " block, no grading); this mesh has "
+            << returnReduce(mesh_.nCells(), sumOp<label>())
             << " cells in the box " << domain << exit(FatalError);
     }
-    cellVolume_.assign(grid_.cell_count(), cellVolume);
     Info<< "TFDEM coupling: Cartesian grid " << grid_.count[0] << " x "
         << grid_.count[1] << " x " << grid_.count[2] << " cells of "
         << grid_.spacing[0] << " x " << grid_.spacing[1] << " x "
         << grid_.spacing[2] << " m" << endl;
+    return gridCellOfCell;
+}
+
+
+void Foam::TfdemCoupling::createCore(const labelList& gridCellOfCell)
+{
+    std::vector<int> ownerOfGridCell(grid_.cell_count(), -1);
+    for (const label g : gridCellOfCell)
+    {
+        ownerOfGridCell[g] = Pstream::myProcNo();
+    }
+    MPI_Allreduce
+    (
+        MPI_IN_PLACE, ownerOfGridCell.data(), grid_.cell_count(), MPI_INT, MPI_MAX,
+        MPI_COMM_WORLD
+    );
+    const std::vector<int> ownedCells(gridCellOfCell.begin(), gridCellOfCell.end());
+    core_.reset
+    (
+        new tfdem::DistributedCoupling
+        (
+            MPI_COMM_WORLD, grid_, std::move(ownerOfGridCell), ownedCells,
+            std::vector<double>(ownedCells.size(), grid_.cell_volume()),
+            config_.void_fraction, config_.transfer
+        )
+    );
 }
 
 
@@ -248,7 +284,7 @@ void Foam::TfdemCoupling::checkContactTimeStep() const
     if (dt > tc/10)
     {
         FatalErrorInFunction
-            << mesh_.time().path()/config_.dem_script << ": DEM timestep " << dt
+            << mesh_.time().globalPath()/config_.dem_script << ": DEM timestep " << dt
             << " s is above t_c/10 = " << tc/10 << " s (seed 000 eq. 26 with k_n = "
             << contact.stiffness << " N/m and the lightest particles): contacts are not"
             << " resolved; use timestep <= t_c/50 = " << tc/50 << " s"
@@ -296,17 +332,25 @@ void Foam::TfdemCoupling::gatherCellFields()
     // continuity exactly, reconstructed in the cell and divided by the cell's eps. Unlike the
     // momentum solution U, it has no odd-even wiggles where eps and K jump (bed surfaces).
     const volVectorField gasVelocity(fvc::reconstruct(superficialFlux_)/voidFraction_);
-    const volVectorField gradP(fvc::grad(p_));
-    const std::size_t n = cellOfGridCell_.size();
-    cellVelocity_.resize(3*n);
-    cellPressureGradient_.resize(3*n);
-    for (std::size_t g = 0; g < n; ++g)
+    cellVelocity_.resize(3*mesh_.nCells());
+    forAll(gasVelocity, celli)
     {
-        const label celli = cellOfGridCell_[g];
         for (direction a = 0; a < 3; ++a)
         {
-            cellVelocity_[3*g + a] = gasVelocity[celli][a];
-            cellPressureGradient_[3*g + a] = gradP[celli][a];
+            cellVelocity_[3*celli + a] = gasVelocity[celli][a];
+        }
+    }
+    cellPressureGradient_.clear();
+    if (config_.pressure_gradient_force)
+    {
+        const volVectorField gradP(fvc::grad(p_));
+        cellPressureGradient_.resize(3*mesh_.nCells());
+        forAll(gradP, celli)
+        {
+            for (direction a = 0; a < 3; ++a)
+            {
+                cellPressureGradient_[3*celli + a] = gradP[celli][a];
+            }
         }
     }
 }
@@ -329,7 +373,7 @@ void Foam::TfdemCoupling::couple()
     };
     try
     {
-        tfdem::compute_weights(grid_, particles, config_.void_fraction, weights_);
+        core_->map(particles);
     }
     catch (const std::out_of_range& e)
     {
@@ -337,49 +381,29 @@ void Foam::TfdemCoupling::couple()
             << "at t = " << mesh_.time().value() << " s: " << e.what()
             << exit(FatalError);
     }
-    tfdem::map_gas_fraction
-    (
-        weights_, particles, cellVolume_,
-        config_.void_fraction.gas_fraction_floor, gasFraction_
-    );
-    flooredCellSteps_ += gasFraction_.floored_cells;
+    const tfdem::CouplingTotals& totals = core_->totals();
+    remoteRecords_ += core_->exchange().remote_records();
+    flooredCellSteps_ += totals.floored_cells;
     ++couplingSteps_;
-    if (gasFraction_.floored_cells)
+    if (totals.floored_cells)
     {
         Info<< "TFDEM coupling: void fraction floor "
             << config_.void_fraction.gas_fraction_floor << " used in "
-            << gasFraction_.floored_cells << " cells (lowest value before it "
-            << gasFraction_.lowest_unfloored << ")" << endl;
+            << totals.floored_cells << " cells (lowest value before it "
+            << totals.lowest_unfloored << ")" << endl;
     }
-
     mapSeconds_ += secondsSince(mapStart);
 
     const Clock::time_point forceStart = Clock::now();
     gatherCellFields();
-    const std::vector<double> uAt =
-        tfdem::average_to_particles(weights_, cellVelocity_.data(), 3);
-    const std::vector<double> epsAt =
-        tfdem::average_to_particles(weights_, gasFraction_.gas_fraction.data(), 1);
-    const std::vector<double> gradPAt = config_.pressure_gradient_force
-      ? tfdem::average_to_particles(weights_, cellPressureGradient_.data(), 3)
-      : std::vector<double>();
-
-    const tfdem::CellGas cells
-    {
-        cellVolume_.size(), cellVelocity_.data(),
-        gasFraction_.gas_fraction.data(), cellVolume_.data()
-    };
-    const tfdem::GasAtParticles atParticles
-    {
-        uAt.data(), epsAt.data(),
-        gradPAt.empty() ? nullptr : gradPAt.data(),
-        nullptr
-    };
-    tfdem::transfer(weights_, particles, cells, atParticles, config_.transfer, transfer_);
-
-    checkConservation(particles);
-    double* force = dem_->fluid_force();
-    std::copy(transfer_.particle_force.begin(), transfer_.particle_force.end(), force);
+    core_->forces
+    (
+        particles, cellVelocity_.data(),
+        cellPressureGradient_.empty() ? nullptr : cellPressureGradient_.data()
+    );
+    checkConservation();
+    const std::vector<double>& force = core_->particle_force();
+    std::copy(force.begin(), force.end(), dem_->fluid_force());
     writeCellFields();
     forceSeconds_ += secondsSince(forceStart);
 }
@@ -390,17 +414,14 @@ void Foam::TfdemCoupling::writeCellFields()
     scalarField& eps = voidFraction_.primitiveFieldRef();
     scalarField& K = Ksl_.primitiveFieldRef();
     vectorField& Us = Us_.primitiveFieldRef();
-    for (std::size_t g = 0; g < cellOfGridCell_.size(); ++g)
+    const std::vector<double>& coreEps = core_->gas_fraction();
+    const std::vector<double>& coreK = core_->coefficient();
+    const std::vector<double>& coreUs = core_->solid_velocity();
+    forAll(eps, celli)
     {
-        const label celli = cellOfGridCell_[g];
-        eps[celli] = gasFraction_.gas_fraction[g];
-        K[celli] = transfer_.cell_coefficient[g];
-        Us[celli] = vector
-        (
-            transfer_.cell_solid_velocity[3*g],
-            transfer_.cell_solid_velocity[3*g + 1],
-            transfer_.cell_solid_velocity[3*g + 2]
-        );
+        eps[celli] = coreEps[celli];
+        K[celli] = coreK[celli];
+        Us[celli] = vector(coreUs[3*celli], coreUs[3*celli + 1], coreUs[3*celli + 2]);
     }
     voidFraction_.correctBoundaryConditions();
     Ksl_.correctBoundaryConditions();
@@ -408,36 +429,25 @@ void Foam::TfdemCoupling::writeCellFields()
 }
 
 
-void Foam::TfdemCoupling::checkConservation(const tfdem::ParticleView& particles)
+void Foam::TfdemCoupling::checkConservation()
 {
-    if (gasFraction_.floored_cells == 0)
+    const tfdem::CouplingTotals& totals = core_->totals();
+    if (totals.floored_cells == 0 && totals.particle_volume > 0)
     {
-        double particleVolume = 0, mappedVolume = 0;
-        for (std::size_t i = 0; i < particles.count; ++i)
-        {
-            particleVolume += tfdem::sphere_volume(particles.diameter[i]);
-        }
-        for (std::size_t g = 0; g < cellVolume_.size(); ++g)
-        {
-            mappedVolume += (1 - gasFraction_.gas_fraction[g])*cellVolume_[g];
-        }
-        if (particleVolume > 0)
-        {
-            ++volumeCheckedSteps_;
-            maxVolumeMismatch_ = std::max
-            (
-                maxVolumeMismatch_,
-                std::abs(mappedVolume - particleVolume)/particleVolume
-            );
-        }
+        ++volumeCheckedSteps_;
+        maxVolumeMismatch_ = std::max
+        (
+            maxVolumeMismatch_,
+            std::abs(totals.mapped_volume - totals.particle_volume)/totals.particle_volume
+        );
     }
-    const auto& m = transfer_.momentum_imbalance;
-    if (transfer_.drag_magnitude_sum > 0)
+    const auto& m = totals.momentum_imbalance;
+    if (totals.drag_magnitude_sum > 0)
     {
         maxMomentumImbalance_ = std::max
         (
             maxMomentumImbalance_,
-            std::sqrt(m[0]*m[0] + m[1]*m[1] + m[2]*m[2])/transfer_.drag_magnitude_sum
+            std::sqrt(m[0]*m[0] + m[1]*m[1] + m[2]*m[2])/totals.drag_magnitude_sum
         );
     }
 }
@@ -445,25 +455,38 @@ void Foam::TfdemCoupling::checkConservation(const tfdem::ParticleView& particles
 
 void Foam::TfdemCoupling::report() const
 {
-    const auto& m = transfer_.momentum_imbalance;
+    const tfdem::CouplingTotals& totals = core_->totals();
+    const auto& m = totals.momentum_imbalance;
     Info<< "TFDEM coupling: " << couplingSteps_ << " coupling steps; void"
         << " fraction floor used in " << flooredCellSteps_ << " cell-steps;"
         << " last momentum imbalance (particle drag - gas sink) ("
         << m[0] << " " << m[1] << " " << m[2] << ") N of total |drag| "
-        << transfer_.drag_magnitude_sum << " N" << nl
+        << totals.drag_magnitude_sum << " N" << nl
         << "TFDEM conservation: max |sum (1-eps) V_cell - sum V_p| / sum V_p = "
         << maxVolumeMismatch_ << " over " << volumeCheckedSteps_
         << " steps without floor; max |momentum imbalance|"
         << " / sum |drag| = " << maxMomentumImbalance_ << " ("
         << tfdem::transfer_method_names()[int(config_.transfer.method)].c_str()
         << ")" << endl;
-    const double total = demSeconds_ + mapSeconds_ + forceSeconds_ + gasSeconds_;
+    if (Pstream::parRun())
+    {
+        Info<< "TFDEM parallel: " << returnReduce(remoteRecords_, sumOp<scalar>())
+            << " cell records received from particles on other ranks over "
+            << couplingSteps_ << " coupling steps" << endl;
+    }
+    // Wall times of the slowest rank in each part
+    const scalar dem = returnReduce(demSeconds_, maxOp<scalar>());
+    const scalar map = returnReduce(mapSeconds_, maxOp<scalar>());
+    const scalar forces = returnReduce(forceSeconds_, maxOp<scalar>());
+    const scalar gas = returnReduce(gasSeconds_, maxOp<scalar>());
+    const scalar total = dem + map + forces + gas;
     if (total > 0)
     {
-        Info<< "TFDEM timing: DEM " << demSeconds_ << " s, locate+map " << mapSeconds_
-            << " s, forces " << forceSeconds_ << " s, gas " << gasSeconds_
+        Info<< "TFDEM timing: DEM " << dem << " s, locate+map " << map
+            << " s, forces " << forces << " s, gas " << gas
             << " s; (DEM + coupling + gas) / DEM = "
-            << (demSeconds_ > 0 ? total/demSeconds_ : 0) << endl;
+            << (dem > 0 ? total/dem : 0) << " on " << Pstream::nProcs() << " rank(s)"
+            << endl;
     }
 }
 
