@@ -64,6 +64,8 @@ const double *DemInstance::radii() const { return lmp_->atom->radius; }
 
 const double *DemInstance::masses() const { return lmp_->atom->rmass; }
 
+const int *DemInstance::tags() const { return lmp_->atom->tag; }
+
 double *DemInstance::fluid_force() { return local_count() ? fix_->fluid_force(0) : nullptr; }
 
 long DemInstance::global_count() const { return static_cast<long>(lmp_->atom->natoms); }

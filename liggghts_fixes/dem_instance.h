@@ -42,6 +42,8 @@ class DemInstance {
   const double *velocities() const;
   const double *radii() const;
   const double *masses() const;
+  // Atom IDs of the local particles.
+  const int *tags() const;
   // Fluid force applied to each local particle every DEM step until set again (3 per atom).
   double *fluid_force();
   // Total particles over all ranks.

@@ -1,8 +1,10 @@
 #include "tfdemCoupling.H"
+#include "IOmanip.H"
 
 #include <mpi.h>
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <stdexcept>
 
@@ -50,7 +52,8 @@ Foam::TfdemCoupling::TfdemCoupling
     volScalarField& Ksl,
     volVectorField& Us,
     const dimensionedScalar& rho,
-    const dimensionedScalar& nu
+    const dimensionedScalar& nu,
+    const fileName& forceRecordFile
 )
 :
     mesh_(mesh),
@@ -108,6 +111,16 @@ Foam::TfdemCoupling::TfdemCoupling
         << dem_->time_step() << " s, " << config_.coupling_interval
         << " DEM steps per gas step" << nl << endl;
     checkTimeSteps(mesh.time());
+    if (!forceRecordFile.empty())
+    {
+        const fileName path(forceRecordFile + "." + Foam::name(Pstream::myProcNo()));
+        forceRecord_.open(path, std::ios::binary);
+        if (!forceRecord_)
+        {
+            FatalErrorInFunction
+                << "-recordForces: cannot write " << path << exit(FatalError);
+        }
+    }
     couple();
 }
 
@@ -406,6 +419,26 @@ void Foam::TfdemCoupling::couple()
     std::copy(force.begin(), force.end(), dem_->fluid_force());
     writeCellFields();
     forceSeconds_ += secondsSince(forceStart);
+    recordForces();
+}
+
+
+void Foam::TfdemCoupling::recordForces()
+{
+    if (!forceRecord_.is_open())
+    {
+        return;
+    }
+    // Per step: particle count (uint64), their atom IDs (int), their forces (3 doubles each)
+    const Clock::time_point start = Clock::now();
+    const std::uint64_t n = dem_->local_count();
+    forceRecord_.write(reinterpret_cast<const char*>(&n), sizeof(n));
+    forceRecord_.write(reinterpret_cast<const char*>(dem_->tags()), n*sizeof(int));
+    forceRecord_.write
+    (
+        reinterpret_cast<const char*>(core_->particle_force().data()), 3*n*sizeof(double)
+    );
+    recordSeconds_ += secondsSince(start);
 }
 
 
@@ -473,6 +506,23 @@ void Foam::TfdemCoupling::report() const
         Info<< "TFDEM parallel: " << returnReduce(remoteRecords_, sumOp<scalar>())
             << " cell records received from particles on other ranks over "
             << couplingSteps_ << " coupling steps" << endl;
+    }
+    // Sum of all particle coordinates: equal in a DEM-only replay of the recorded forces
+    // when the particles went through the same steps and contacts
+    double positionSum[3] = {0, 0, 0};
+    for (std::size_t i = 0; i < 3*dem_->local_count(); ++i)
+    {
+        positionSum[i % 3] += dem_->positions()[i];
+    }
+    MPI_Allreduce(MPI_IN_PLACE, positionSum, 3, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+    Info<< "TFDEM positions: sum of x, y, z over particles = "
+        << setprecision(17) << positionSum[0] << " " << positionSum[1] << " "
+        << positionSum[2] << setprecision(IOstream::defaultPrecision()) << endl;
+    if (forceRecord_.is_open())
+    {
+        Info<< "TFDEM record: forces written in "
+            << returnReduce(recordSeconds_, maxOp<scalar>()) << " s (not in the split below)"
+            << endl;
     }
     // Wall times of the slowest rank in each part
     const scalar dem = returnReduce(demSeconds_, maxOp<scalar>());

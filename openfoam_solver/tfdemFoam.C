@@ -31,6 +31,14 @@ int main(int argc, char *argv[])
         "Volume-averaged gas solver of the TFDEM hybrid two-fluid/DEM method."
     );
 
+    argList::addOption
+    (
+        "recordForces",
+        "file",
+        "Write every coupling step's particle fluid forces to file.<rank> (binary), for"
+        " the DEM-only replay of bench/bench_bubbling_bed.py"
+    );
+
     #include "postProcess.H"
 
     #include "addCheckCaseOptions.H"
