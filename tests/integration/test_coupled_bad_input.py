@@ -14,11 +14,23 @@ def edit(path, old, new):
     open(path, "w").write(text.replace(old, new))
 
 
-def expect_failure(checks, name, fault, must_contain):
+DECOMPOSE_IN_Y = """FoamFile { version 2.0; format ascii; class dictionary; object decomposeParDict; }
+numberOfSubdomains 2;
+method          simple;
+coeffs          { n (1 2 1); }
+"""
+
+
+def expect_failure(checks, name, fault, must_contain, ranks=1):
     case = copy_case(TUTORIAL, "coupled_bad_" + re.sub(r"\W+", "_", name))
     fault(case)
     run(["blockMesh"], case, "log.blockMesh")
-    code, output = run(["tfdemFoam"], case, "log.tfdemFoam", expect_success=False)
+    solver = ["tfdemFoam"]
+    if ranks > 1:
+        open(os.path.join(case, "system", "decomposeParDict"), "w").write(DECOMPOSE_IN_Y)
+        run(["decomposePar"], case, "log.decomposePar")
+        solver.append("-parallel")
+    code, output = run(solver, case, "log.tfdemFoam", ranks=ranks, expect_success=False)
     checks.true(f"{name}: non-zero exit", code > 0, f"(exit code {code})")
     checks.true(f"{name}: no crash", "Segmentation fault" not in output and "sigsegv" not in output.lower())
     for text in must_contain:
@@ -44,6 +56,11 @@ def main():
     expect_failure(checks, "particle outside the mesh",
                    lambda c: edit(os.path.join(c, "system", "blockMeshDict"), "0.4", "0.3"),
                    ["particle 0 at (0.03, 0.35, 0.01) m is outside the mesh"])
+    # On 2 ranks the particle is held by one rank only; every rank must stop with its message.
+    expect_failure(checks, "particle outside the mesh on 2 ranks",
+                   lambda c: edit(os.path.join(c, "system", "blockMeshDict"), "0.4", "0.3"),
+                   ["[0] at t = 0 s: particle 0 at (0.03, 0.35, 0.01) m is outside the mesh",
+                    "[1] at t = 0 s: particle 0 at (0.03, 0.35, 0.01) m is outside the mesh"], ranks=2)
     expect_failure(checks, "gas properties disagree",
                    lambda c: edit(os.path.join(c, "coupling.yaml"), "density: 1.2 ", "density: 1.25 "),
                    ["gas properties disagree", "gas.density = 1.25"])
