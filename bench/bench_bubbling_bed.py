@@ -98,7 +98,7 @@ def bench(end_time, ranks):
     coupled_loop = dem + mapping + forces + gas
     per = 1e3 / intervals
     print(f"\n{ranks} rank(s), {end_time} s simulated, {intervals} coupling intervals of {INTERVAL} DEM steps")
-    print(f"  per interval (ms, slowest rank): DEM {dem * per:.2f}, locate+map {mapping * per:.3f}, "
+    print(f"  per interval (ms, rank 0): DEM {dem * per:.2f}, locate+map {mapping * per:.3f}, "
           f"forces {forces * per:.3f}, gas {gas * per:.2f}")
     print(f"  coupled time loop {coupled_loop:.2f} s (+ {record:.2f} s writing the force record); "
           f"DEM-only replay {replay_dem:.2f} s")

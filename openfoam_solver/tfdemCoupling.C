@@ -524,19 +524,17 @@ void Foam::TfdemCoupling::report() const
             << returnReduce(recordSeconds_, maxOp<scalar>()) << " s (not in the split below)"
             << endl;
     }
-    // Wall times of the slowest rank in each part
-    const scalar dem = returnReduce(demSeconds_, maxOp<scalar>());
-    const scalar map = returnReduce(mapSeconds_, maxOp<scalar>());
-    const scalar forces = returnReduce(forceSeconds_, maxOp<scalar>());
-    const scalar gas = returnReduce(gasSeconds_, maxOp<scalar>());
-    const scalar total = dem + map + forces + gas;
+    // Split of rank 0's coupled loop (the parts run one after the other, so a rank's sum is
+    // the loop's wall time; time a rank spends waiting for others falls in the part it waits in)
+    double split[4] = {demSeconds_, mapSeconds_, forceSeconds_, gasSeconds_};
+    MPI_Bcast(split, 4, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+    const double total = split[0] + split[1] + split[2] + split[3];
     if (total > 0)
     {
-        Info<< "TFDEM timing: DEM " << dem << " s, locate+map " << map
-            << " s, forces " << forces << " s, gas " << gas
-            << " s; (DEM + coupling + gas) / DEM = "
-            << (dem > 0 ? total/dem : 0) << " on " << Pstream::nProcs() << " rank(s)"
-            << endl;
+        Info<< "TFDEM timing: DEM " << split[0] << " s, locate+map " << split[1]
+            << " s, forces " << split[2] << " s, gas " << split[3]
+            << " s; (DEM + coupling + gas) / DEM = " << (split[0] > 0 ? total/split[0] : 0)
+            << " on " << Pstream::nProcs() << " rank(s)" << endl;
     }
 }
 
