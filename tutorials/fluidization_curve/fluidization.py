@@ -1,45 +1,122 @@
 """Fluidization curve: superficial velocity stepped up then down, pressure drop per level.
 
-Levels of LEVEL_DURATION s each (0/U's inlet table, written here); the pressure drop of a
-level is the mean of p(inlet, area average) - p(15.5 cm) over its last AVERAGED_PART, plus
-the gas weight between them. Expected (seed 000 Table 1 particles, 425 of them in a 5 cm wide
-layer one diameter deep):
-  - plateau (fluidized levels) = bed weight per area = N m_p g / (W D), less buoyancy;
-  - U_mf where the falling branch leaves the plateau: Wen and Yu (1966) U_mf = 1.26 m/s.
+The bed (bed.data, about 825 spheres of seed 000 Table 1, d = 2.5 mm, rho = 2526 kg/m^3) rests
+on a distributor plate at FLOOR = 1 cm in a 10 cm wide column one diameter deep; the gas enters
+at y = 0 through the windbox cell below the plate. Each level of LEVELS is held for its
+duration (0/U's inlet table, written here); its pressure drop is the mean over the level's last
+AVERAGED_PART of p(inlet, area average) - p(PROBE_HEIGHT) less the gas weight rho_g g h between
+the two (p here includes the hydrostatic gas head).
+
+Expected:
+  - plateau (levels >= FLUIDIZED) = net bed weight per cross-section N m_p (1 - rho_g/rho_p) g / (W D);
+  - U_mf near Wen and Yu (1966), computed from Ar below; and, since the drag closure below
+    eps = 0.8 is Ergun's, near Ergun's U_mf at the voidage the bed actually has at U_mf.
+U_mf is measured the standard way: the fixed-bed points of the falling branch (pressure drop
+below FIXED_BED_LIMIT x plateau) are fitted with Ergun's form dp = a U + b U^2 and the fit is
+intersected with the plateau.
 """
 import math
 import os
+import re
 
-RISING = (0.4, 0.7, 0.9, 1.0, 1.1, 1.2, 1.3, 1.4, 1.6, 1.8)
-LEVELS = RISING + tuple(reversed(RISING[:-1]))
-LEVEL_DURATION, AVERAGED_PART = 0.3, 0.5
-PARTICLES, D, RHO_P, RHO_G, MU, G = 425, 0.0025, 2526.0, 1.2, 1.8e-5, 9.81
-WIDTH, DEPTH, PROBE_HEIGHT = 0.05, 0.0025, 0.155
-FLUIDIZED = 1.6  # m/s: levels at or above it count for the plateau
+# (superficial velocity m/s, duration s). Fixed-bed levels settle within a few gas steps;
+# fluidized ones bubble with a period of ~0.3 s and are held 1-2 s.
+LEVELS = (
+    (0.4, 0.2), (0.7, 0.2), (0.9, 0.2), (1.1, 0.2), (1.3, 0.3), (1.5, 0.5),
+    (1.8, 1.0), (2.2, 2.0),
+    (1.8, 1.5), (1.5, 0.6), (1.3, 0.4),
+    (1.2, 0.2), (1.1, 0.2), (1.0, 0.2), (0.9, 0.2), (0.7, 0.2), (0.4, 0.2),
+)
+RISING_COUNT = 8  # LEVELS[:8] rise to the top level, the rest fall
+AVERAGED_PART = 0.5  # last half of each level
+FLUIDIZED = 1.8  # m/s: levels at or above it make the plateau (about 1.3 x U_mf)
+FIXED_BED_LIMIT = 0.85  # falling-branch levels below 0.85 x plateau are fitted as fixed bed
+
+D, RHO_P, RHO_G, MU, G = 0.0025, 2526.0, 1.2, 1.8e-5, 9.81
+WIDTH, DEPTH, FLOOR, PROBE_HEIGHT = 0.10, 0.0025, 0.01, 0.155
 
 
-def bed_weight_per_area():
-    """Net weight (weight less buoyancy) of the particles per cross-section (Pa)."""
-    volume = PARTICLES * math.pi * D ** 3 / 6
-    return (RHO_P - RHO_G) * G * volume / (WIDTH * DEPTH)
+def end_time():
+    return sum(duration for _, duration in LEVELS)
+
+
+def level_windows():
+    """(velocity, start, end) of each level's averaging window, in run order."""
+    windows, t = [], 0.0
+    for u, duration in LEVELS:
+        windows.append((u, t + (1 - AVERAGED_PART) * duration, t + duration))
+        t += duration
+    return windows
+
+
+def particle_count(case="."):
+    for line in open(os.path.join(case, "bed.data")):
+        if line.strip().endswith("atoms"):
+            return int(line.split()[0])
+    raise ValueError(f"{os.path.join(case, 'bed.data')}: no 'N atoms' line")
+
+
+def particle_volume():
+    return math.pi * D ** 3 / 6
+
+
+def bed_weight_per_area(n):
+    """Net weight (weight less buoyancy) of n particles per cross-section (Pa)."""
+    return n * particle_volume() * (RHO_P - RHO_G) * G / (WIDTH * DEPTH)
+
+
+def archimedes():
+    return RHO_G * (RHO_P - RHO_G) * G * D ** 3 / MU ** 2
 
 
 def wen_yu_minimum_fluidization():
-    ar = RHO_G * (RHO_P - RHO_G) * G * D ** 3 / MU ** 2
-    return (math.sqrt(33.7 ** 2 + 0.0408 * ar) - 33.7) * MU / (RHO_G * D)
+    """Wen and Yu (1966): Re_mf = sqrt(33.7^2 + 0.0408 Ar) - 33.7."""
+    return (math.sqrt(33.7 ** 2 + 0.0408 * archimedes()) - 33.7) * MU / (RHO_G * D)
+
+
+def ergun_minimum_fluidization(eps):
+    """U_mf where Ergun's pressure drop at voidage eps equals the net bed weight:
+    1.75/eps^3 Re^2 + 150 (1 - eps)/eps^3 Re = Ar."""
+    a, b = 1.75 / eps ** 3, 150 * (1 - eps) / eps ** 3
+    re = (-b + math.sqrt(b * b + 4 * a * archimedes())) / (2 * a)
+    return re * MU / (RHO_G * D)
+
+
+def voidage(n, mean_height):
+    """Bed voidage from the mean particle height above the plate (bed height = 2 x mean)."""
+    height = 2 * (mean_height - FLOOR)
+    return 1 - n * particle_volume() / (WIDTH * DEPTH * height), height
+
+
+def ergun_pressure_drop(u, eps, height):
+    """Ergun (1952) for a bed of voidage eps and height `height` (Pa)."""
+    return (150 * (1 - eps) ** 2 * MU * u / (eps ** 3 * D ** 2)
+            + 1.75 * (1 - eps) * RHO_G * u * u / (eps ** 3 * D)) * height
 
 
 def inlet_table():
     """OpenFOAM table of the inlet velocity: each level held, switched over 10 ms."""
     rows, t = [], 0.0
-    for u in LEVELS:
+    for u, duration in LEVELS:
         rows.append(f"({t + (0.01 if t else 0):.4f} (0 {u} 0))")
-        t += LEVEL_DURATION
+        t += duration
         rows.append(f"({t:.4f} (0 {u} 0))")
     return "\n".join(rows)
 
 
+def check_end_time(case):
+    """system/controlDict's endTime must be the sum of the level durations."""
+    path = os.path.join(case, "system", "controlDict")
+    match = re.search(r"^endTime\s+([^;\s]+)\s*;", open(path).read(), re.M)
+    if not match:
+        raise SystemExit(f"{path}: no endTime entry; expected endTime {end_time():g};")
+    if abs(float(match.group(1)) - end_time()) > 1e-9:
+        raise SystemExit(f"{path}: endTime {match.group(1)} differs from the sum of the level"
+                         f" durations in fluidization.py LEVELS, {end_time():g} s; make them equal")
+
+
 def write_velocity_file(case):
+    check_end_time(case)
     text = f"""FoamFile {{ version 2.0; format ascii; class volVectorField; object U; }}
 dimensions      [0 1 -1 0 0 0 0];
 internalField   uniform (0 0 0);
@@ -55,44 +132,112 @@ boundaryField
     frontAndBack {{ type empty; }}
 }}
 """
-    open(os.path.join(case, "0", "U"), "w").write(text)
+    with open(os.path.join(case, "0", "U"), "w") as f:
+        f.write(text)
 
 
-def series(path, column=1):
+def dem_time_step(case="."):
+    """The DEM step of in.bed (forces.txt counts DEM steps)."""
+    path = os.path.join(case, "in.bed")
+    match = re.search(r"^timestep\s+(\S+)", open(path).read(), re.M)
+    if not match:
+        raise ValueError(f"{path}: no timestep command")
+    return float(match.group(1))
+
+
+def rows(path):
     out = []
     for line in open(path):
         if line.startswith("#") or not line.strip():
             continue
-        parts = line.split()
-        out.append((float(parts[0]), float(parts[column])))
+        out.append([float(v) for v in line.split()])
     return out
 
 
-def level_pressure_drops(case):
-    """(velocity, mean dp) per level, in run order."""
-    inlet = series(os.path.join(case, "postProcessing", "inletPressure", "0", "surfaceFieldValue.dat"))
-    above = dict(series(os.path.join(case, "postProcessing", "abovePressure", "0", "p")))
-    drops = [(t, p - above[t] + RHO_G * G * PROBE_HEIGHT) for t, p in inlet if t in above]
-    result = []
-    for k, u in enumerate(LEVELS):
-        end = (k + 1) * LEVEL_DURATION
-        start = end - AVERAGED_PART * LEVEL_DURATION
-        values = [dp for t, dp in drops if start < t <= end + 1e-9]
-        result.append((u, sum(values) / len(values)))
-    return result
-
-
-def plateau(drops):
-    values = [dp for u, dp in drops if u >= FLUIDIZED]
+def mean_in(series, start, end, column=1):
+    values = [r[column] for r in series if start < r[0] <= end + 1e-9]
+    if not values:
+        raise ValueError(f"no samples between {start} and {end} s: did the run finish?")
     return sum(values) / len(values)
 
 
-def minimum_fluidization(drops):
-    """Velocity where the falling branch's pressure drop reaches the plateau (linear
-    interpolation between the two levels that bracket it)."""
-    top = plateau(drops)
-    falling = drops[len(RISING) - 1:]
-    for (u_hi, dp_hi), (u_lo, dp_lo) in zip(falling, falling[1:]):
-        if dp_lo < top <= dp_hi or (dp_lo < top and dp_hi >= top * 0.98):
-            return u_lo + (top - dp_lo) * (u_hi - u_lo) / (dp_hi - dp_lo)
-    return float("nan")
+def levels(case="."):
+    """One dict per level, in run order: u, dp (Pa), eps and bed height from the mean particle
+    height, Ergun's dp at that voidage, and the mean vertical forces on the particles as
+    fractions of their weight (gas, plate, side walls)."""
+    n = particle_count(case)
+    inlet = rows(os.path.join(case, "postProcessing", "inletPressure", "0", "surfaceFieldValue.dat"))
+    above = {r[0]: r[1] for r in rows(os.path.join(case, "postProcessing", "abovePressure", "0", "p"))}
+    drops = [(t, p - above[t] - RHO_G * G * PROBE_HEIGHT) for t, p in inlet if t in above]
+    heights = rows(os.path.join(case, "mean_height.txt"))
+    dt = dem_time_step(case)
+    forces = [[r[0] * dt] + r[1:] for r in rows(os.path.join(case, "forces.txt"))]
+    weight = n * particle_volume() * RHO_P * G
+    result = []
+    for u, start, end in level_windows():
+        eps, height = voidage(n, mean_in(heights, start, end))
+        result.append({
+            "u": u,
+            "dp": mean_in([(t, dp) for t, dp in drops], start, end),
+            "eps": eps,
+            "height": height,
+            "ergun": ergun_pressure_drop(u, eps, height),
+            "gas": mean_in(forces, start, end, 1) / weight,
+            "plate": mean_in(forces, start, end, 2) / weight,
+            "side": (mean_in(forces, start, end, 3) + mean_in(forces, start, end, 4)) / weight,
+        })
+    return result
+
+
+def plateau(result):
+    values = [r["dp"] for r in result if r["u"] >= FLUIDIZED]
+    return sum(values) / len(values)
+
+
+def fixed_bed_fit(branch, top):
+    """Least-squares dp = a U + b U^2 through the branch's fixed-bed levels: (a, b, levels)."""
+    fixed = [r for r in branch if r["dp"] < FIXED_BED_LIMIT * top]
+    s11 = sum(r["u"] ** 2 for r in fixed)
+    s12 = sum(r["u"] ** 3 for r in fixed)
+    s22 = sum(r["u"] ** 4 for r in fixed)
+    y1 = sum(r["u"] * r["dp"] for r in fixed)
+    y2 = sum(r["u"] ** 2 * r["dp"] for r in fixed)
+    det = s11 * s22 - s12 * s12
+    return (y1 * s22 - y2 * s12) / det, (s11 * y2 - s12 * y1) / det, fixed
+
+
+def minimum_fluidization(branch, top):
+    """Intersection of the fixed-bed fit with the plateau: (U_mf, a, b, fitted levels)."""
+    a, b, fixed = fixed_bed_fit(branch, top)
+    return (-a + math.sqrt(a * a + 4 * b * top)) / (2 * b), a, b, fixed
+
+
+def rising(result):
+    return result[:RISING_COUNT]
+
+
+def falling(result):
+    return result[RISING_COUNT - 1:]
+
+
+def summary(case="."):
+    """The figures the README reports, as a dict."""
+    result = levels(case)
+    n = particle_count(case)
+    top, weight = plateau(result), bed_weight_per_area(n)
+    u_mf, a, b, fixed = minimum_fluidization(falling(result), top)
+    u_mf_rising = minimum_fluidization(rising(result), top)[0]
+    # voidage of the defluidized bed: the falling branch's fixed-bed levels
+    eps_mf = sum(r["eps"] for r in fixed) / len(fixed)
+    at_1 = [r for r in falling(result) if abs(r["u"] - 1.0) < 1e-9][0]
+    fluidized = [r for r in result if r["u"] >= FLUIDIZED]
+    return {
+        "particles": n, "levels": result, "plateau": top, "weight": weight,
+        "u_mf": u_mf, "u_mf_rising": u_mf_rising, "fit": (a, b), "fitted": fixed,
+        "wen_yu": wen_yu_minimum_fluidization(), "eps_mf": eps_mf,
+        "ergun_u_mf": ergun_minimum_fluidization(eps_mf),
+        "fixed_bed_1": at_1,
+        "gas_share": sum(r["gas"] for r in fluidized) / len(fluidized),
+        "plate_share": sum(r["plate"] for r in fluidized) / len(fluidized),
+        "side_share": sum(r["side"] for r in fluidized) / len(fluidized),
+    }
