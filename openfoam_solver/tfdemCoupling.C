@@ -46,7 +46,7 @@ bool Foam::TfdemCoupling::caseIsCoupled(const Time& runTime)
 Foam::TfdemCoupling::TfdemCoupling
 (
     const fvMesh& mesh,
-    const volScalarField& p,
+    const volVectorField& pressureGradient,
     const surfaceScalarField& superficialFlux,
     volScalarField& voidFraction,
     volScalarField& Ksl,
@@ -57,7 +57,7 @@ Foam::TfdemCoupling::TfdemCoupling
 )
 :
     mesh_(mesh),
-    p_(p),
+    pressureGradient_(pressureGradient),
     superficialFlux_(superficialFlux),
     voidFraction_(voidFraction),
     Ksl_(Ksl),
@@ -356,13 +356,12 @@ void Foam::TfdemCoupling::gatherCellFields()
     cellPressureGradient_.clear();
     if (config_.pressure_gradient_force)
     {
-        const volVectorField gradP(fvc::grad(p_));
         cellPressureGradient_.resize(3*mesh_.nCells());
-        forAll(gradP, celli)
+        forAll(pressureGradient_, celli)
         {
             for (direction a = 0; a < 3; ++a)
             {
-                cellPressureGradient_[3*celli + a] = gradP[celli][a];
+                cellPressureGradient_[3*celli + a] = pressureGradient_[celli][a];
             }
         }
     }

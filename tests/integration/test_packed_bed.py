@@ -1,9 +1,10 @@
 """Gas through a fixed bed: pressure drop against Ergun at three superficial velocities.
 
 Expected values: tutorials/packed_bed_ergun/ergun.py (Ergun 1952 with the bed's exact
-eps_g = 1 - pi d^2/(6 s^2), plus the gas weight between the probes). Tolerance 3 %: the
-closure is Ergun itself, so what remains is the discretisation at the bed's top and bottom
-(measured -1.6 to -2.3 % for a bed 10 cells tall).
+eps_g = 1 - pi d^2/(6 s^2), plus the gas weight between the probes). Tolerance 0.5 %
+(the issue asks 3 %): the closure is Ergun itself and the gas solver's face flux is exact for
+a steady flow through the bed's top and bottom faces, so what remains is the gas momentum's
+convection and viscous terms and the approach to steady state (measured +0.09 to +0.14 %).
 """
 import os
 import sys
@@ -20,7 +21,7 @@ def main():
     for u in ergun.VELOCITIES:
         case = scratch(f"packed_bed_U{u}")
         dp = ergun.prepare_run(TUTORIAL, case, u, run)
-        checks.close(f"pressure drop at U = {u} m/s (Pa)", dp, ergun.ergun_pressure_drop(u), 0.03)
+        checks.close(f"pressure drop at U = {u} m/s (Pa)", dp, ergun.ergun_pressure_drop(u), 0.005)
     checks.finish()
 
 
