@@ -47,7 +47,7 @@ Foam::TfdemCoupling::TfdemCoupling
 (
     const fvMesh& mesh,
     const volVectorField& pressureGradient,
-    const surfaceScalarField& superficialFlux,
+    const volVectorField& gasVelocity,
     volScalarField& voidFraction,
     volScalarField& Ksl,
     volVectorField& Us,
@@ -58,7 +58,7 @@ Foam::TfdemCoupling::TfdemCoupling
 :
     mesh_(mesh),
     pressureGradient_(pressureGradient),
-    superficialFlux_(superficialFlux),
+    gasVelocity_(gasVelocity),
     voidFraction_(voidFraction),
     Ksl_(Ksl),
     Us_(Us),
@@ -341,16 +341,16 @@ void Foam::TfdemCoupling::evolve()
 
 void Foam::TfdemCoupling::gatherCellFields()
 {
-    // Interstitial gas velocity seen by particles: the superficial face fluxes, which satisfy
-    // continuity exactly, reconstructed in the cell and divided by the cell's eps. Unlike the
-    // momentum solution U, it has no odd-even wiggles where eps and K jump (bed surfaces).
-    const volVectorField gasVelocity(fvc::reconstruct(superficialFlux_)/voidFraction_);
+    // Interstitial gas velocity seen by particles: U, which pEqn.H sets to the superficial
+    // face fluxes (they satisfy continuity exactly) reconstructed in the cell and divided by
+    // eps; unlike a cell-centred momentum solution it has no odd-even wiggles where eps and
+    // K jump (bed surfaces).
     cellVelocity_.resize(3*mesh_.nCells());
-    forAll(gasVelocity, celli)
+    forAll(gasVelocity_, celli)
     {
         for (direction a = 0; a < 3; ++a)
         {
-            cellVelocity_[3*celli + a] = gasVelocity[celli][a];
+            cellVelocity_[3*celli + a] = gasVelocity_[celli][a];
         }
     }
     cellPressureGradient_.clear();
