@@ -91,7 +91,7 @@ def bench(end_time, ranks):
     coupled_positions = number(r"TFDEM positions: sum of x, y, z over particles = (\S+) (\S+) (\S+)", log)
     intervals = round(end_time / GAS_STEP)
     replay_wall, replay_log = run(["tfdem-dem-replay", "in.bed", "forces.bin", str(INTERVAL), str(intervals)],
-                                  case, "log.replay", ranks)
+                                  case, "log.replay.out", ranks)
     replay_dem = number(r"TFDEM replay: DEM (\S+) s", replay_log)[0]
     replay_positions = number(r"TFDEM positions: sum of x, y, z over particles = (\S+) (\S+) (\S+)", replay_log)
     same = max(abs(a - b) / abs(a) for a, b in zip(coupled_positions, replay_positions))
