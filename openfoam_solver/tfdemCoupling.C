@@ -487,6 +487,14 @@ void Foam::TfdemCoupling::checkConservation()
 
 void Foam::TfdemCoupling::report() const
 {
+    reportConservation();
+    reportPositions();
+    reportTiming();
+}
+
+
+void Foam::TfdemCoupling::reportConservation() const
+{
     const tfdem::CouplingTotals& totals = core_->totals();
     const auto& m = totals.momentum_imbalance;
     Info<< "TFDEM coupling: " << couplingSteps_ << " coupling steps; void"
@@ -506,8 +514,13 @@ void Foam::TfdemCoupling::report() const
             << " cell records received from particles on other ranks over "
             << couplingSteps_ << " coupling steps" << endl;
     }
-    // Sum of all particle coordinates: equal in a DEM-only replay of the recorded forces
-    // when the particles went through the same steps and contacts
+}
+
+
+void Foam::TfdemCoupling::reportPositions() const
+{
+    // Equal in a DEM-only replay of the recorded forces when the particles went through the
+    // same steps and contacts
     double positionSum[3] = {0, 0, 0};
     for (std::size_t i = 0; i < 3*dem_->local_count(); ++i)
     {
@@ -523,6 +536,11 @@ void Foam::TfdemCoupling::report() const
             << returnReduce(recordSeconds_, maxOp<scalar>()) << " s (not in the split below)"
             << endl;
     }
+}
+
+
+void Foam::TfdemCoupling::reportTiming() const
+{
     // Split of rank 0's coupled loop (the parts run one after the other, so a rank's sum is
     // the loop's wall time; time a rank spends waiting for others falls in the part it waits in)
     double split[4] = {demSeconds_, mapSeconds_, forceSeconds_, gasSeconds_};
