@@ -22,16 +22,17 @@ import time
 SOURCE = os.path.abspath(os.path.join(os.path.dirname(__file__), ".."))
 BUILD = os.environ.get("TFDEM_BUILD", os.path.join(SOURCE, "build"))
 TUTORIAL = os.path.join(SOURCE, "tutorials", "bubbling_bed")
+sys.path.insert(0, os.path.join(SOURCE, "tests", "integration"))
+import tfdem_testlib  # noqa: E402
+
 INTERVAL = 50  # dem.coupling_interval of the tutorial's coupling.yaml
 GAS_STEP = 2.5e-4  # its deltaT
 
 
 def environment():
-    env = dict(os.environ, WM_PROJECT_DIR="/usr/share/openfoam", OMPI_MCA_rmaps_base_oversubscribe="1")
-    env["PATH"] = os.pathsep.join([os.path.join(BUILD, d) for d in ("openfoam_solver", "liggghts_fixes", "bench")]
-                                  + [env["PATH"]])
-    if os.geteuid() == 0:
-        env.update(OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    """The integration tests' environment, with bench/ on PATH for tfdem-dem-replay."""
+    env = tfdem_testlib.environment()
+    env["PATH"] = os.pathsep.join([os.path.join(BUILD, "bench"), env["PATH"]])
     return env
 
 
@@ -68,9 +69,7 @@ def prepare(case, end_time, ranks):
     run(["blockMesh"], case, "log.blockMesh")
     if ranks > 1:
         # Gas split like LIGGGHTS' `processors * 1 1` in in.bed: side by side in x.
-        open(os.path.join(case, "system", "decomposeParDict"), "w").write(
-            "FoamFile { version 2.0; format ascii; class dictionary; object decomposeParDict; }\n"
-            f"numberOfSubdomains {ranks};\nmethod simple;\ncoeffs {{ n ({ranks} 1 1); }}\n")
+        tfdem_testlib.write_decompose_dict(case, (ranks, 1, 1))
         run(["decomposePar"], case, "log.decomposePar")
 
 

@@ -339,33 +339,19 @@ void Foam::TfdemCoupling::evolve()
 }
 
 
-void Foam::TfdemCoupling::gatherCellFields()
+namespace
 {
-    // Interstitial gas velocity seen by particles: U, which pEqn.H sets to the superficial
-    // face fluxes (they satisfy continuity exactly) reconstructed in the cell and divided by
-    // eps; unlike a cell-centred momentum solution it has no odd-even wiggles where eps and
-    // K jump (bed surfaces).
-    cellVelocity_.resize(3*mesh_.nCells());
-    forAll(gasVelocity_, celli)
-    {
-        for (direction a = 0; a < 3; ++a)
-        {
-            cellVelocity_[3*celli + a] = gasVelocity_[celli][a];
-        }
-    }
-    cellPressureGradient_.clear();
-    if (config_.pressure_gradient_force)
-    {
-        cellPressureGradient_.resize(3*mesh_.nCells());
-        forAll(pressureGradient_, celli)
-        {
-            for (direction a = 0; a < 3; ++a)
-            {
-                cellPressureGradient_[3*celli + a] = pressureGradient_[celli][a];
-            }
-        }
-    }
+
+// The components of a vector field's internal values, 3 doubles per cell (Vector<scalar> is
+// three contiguous scalars), for the core's flat arrays.
+static_assert(sizeof(Foam::vector) == 3*sizeof(double), "vector must be 3 packed doubles");
+
+const double* flatComponents(const Foam::volVectorField& field)
+{
+    return reinterpret_cast<const double*>(field.primitiveField().cdata());
 }
+
+} // End anonymous namespace
 
 
 void Foam::TfdemCoupling::couple()
@@ -407,11 +393,13 @@ void Foam::TfdemCoupling::couple()
     mapSeconds_ += secondsSince(mapStart);
 
     const Clock::time_point forceStart = Clock::now();
-    gatherCellFields();
+    // Gas velocity: U, which pEqn.H sets to the superficial face fluxes (they satisfy
+    // continuity exactly) reconstructed in the cell and divided by eps, free of the odd-even
+    // wiggles a cell-centred momentum solution has where eps and K jump (bed surfaces)
     core_->forces
     (
-        particles, cellVelocity_.data(),
-        cellPressureGradient_.empty() ? nullptr : cellPressureGradient_.data()
+        particles, flatComponents(gasVelocity_),
+        config_.pressure_gradient_force ? flatComponents(pressureGradient_) : nullptr
     );
     checkConservation();
     const std::vector<double>& force = core_->particle_force();

@@ -3,7 +3,7 @@ expected; exit code non-zero; no crash. Each case is the settling tutorial with 
 import os
 import re
 
-from tfdem_testlib import SOURCE_DIR, Checks, copy_case, run
+from tfdem_testlib import SOURCE_DIR, Checks, copy_case, run, write_decompose_dict
 
 TUTORIAL = os.path.join(SOURCE_DIR, "tutorials", "settling_particle")
 
@@ -14,20 +14,13 @@ def edit(path, old, new):
     open(path, "w").write(text.replace(old, new))
 
 
-DECOMPOSE_IN_Y = """FoamFile { version 2.0; format ascii; class dictionary; object decomposeParDict; }
-numberOfSubdomains 2;
-method          simple;
-coeffs          { n (1 2 1); }
-"""
-
-
 def expect_failure(checks, name, fault, must_contain, ranks=1):
     case = copy_case(TUTORIAL, "coupled_bad_" + re.sub(r"\W+", "_", name))
     fault(case)
     run(["blockMesh"], case, "log.blockMesh")
     solver = ["tfdemFoam"]
     if ranks > 1:
-        open(os.path.join(case, "system", "decomposeParDict"), "w").write(DECOMPOSE_IN_Y)
+        write_decompose_dict(case, (1, 2, 1))
         run(["decomposePar"], case, "log.decomposePar")
         solver.append("-parallel")
     code, output = run(solver, case, "log.tfdemFoam", ranks=ranks, expect_success=False)

@@ -14,7 +14,7 @@ import os
 import re
 import sys
 
-from tfdem_testlib import SOURCE_DIR, Checks, copy_case, fail, run
+from tfdem_testlib import SOURCE_DIR, Checks, copy_case, fail, run, write_decompose_dict
 
 TUTORIALS = os.path.join(SOURCE_DIR, "tutorials")
 sys.path.insert(0, os.path.join(TUTORIALS, "settling_particle"))
@@ -22,11 +22,6 @@ sys.path.insert(0, os.path.join(TUTORIALS, "packed_bed_ergun"))
 import ergun  # noqa: E402
 import settling_ode  # noqa: E402
 
-DECOMPOSE = """FoamFile { version 2.0; format ascii; class dictionary; object decomposeParDict; }
-numberOfSubdomains 2;
-method          simple;
-coeffs          { n (1 2 1); }
-"""
 TOLERANCE = 1e-8
 
 
@@ -48,7 +43,7 @@ def run_case(source, name, script, ranks, edit=None):
     if ranks == 1:
         return case, run(["tfdemFoam"], case, "log.tfdemFoam")[1]
     split_dem_in_x(case, script)
-    open(os.path.join(case, "system", "decomposeParDict"), "w").write(DECOMPOSE)
+    write_decompose_dict(case, (1, 2, 1))
     run(["decomposePar"], case, "log.decomposePar")
     return case, run(["tfdemFoam", "-parallel"], case, "log.tfdemFoam", ranks=ranks)[1]
 
@@ -56,15 +51,6 @@ def run_case(source, name, script, ranks, edit=None):
 def remote_records(log):
     match = re.search(r"TFDEM parallel: (\S+) cell records received from particles on other ranks", log)
     return float(match.group(1)) if match else 0.0
-
-
-def set_inlet_velocity(u):
-    def edit(case):
-        path = os.path.join(case, "0", "U")
-        text = open(path).read()
-        open(path, "w").write(re.sub(r"inlet(\s*\{[^}]*value\s+uniform\s+)\(0 [0-9.]+ 0\)",
-                                     rf"inlet\g<1>(0 {u} 0)", text))
-    return edit
 
 
 def main():
@@ -81,7 +67,8 @@ def main():
     checks.within("settling: max |v_1 - v_2| / u_t", worst, 0.0, TOLERANCE)
 
     source = os.path.join(TUTORIALS, "packed_bed_ergun")
-    edit = set_inlet_velocity(0.6)
+    def edit(case):
+        ergun.set_inlet_velocity(case, 0.6)
     serial, _ = run_case(source, "identity_packed_1", "in.fixed_bed", 1, edit)
     parallel, log = run_case(source, "identity_packed_2", "in.fixed_bed", 2, edit)
     checks.true("packed bed: particles in cells of the other rank", remote_records(log) > 0,

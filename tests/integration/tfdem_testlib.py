@@ -42,6 +42,15 @@ def copy_case(source, name):
     return dest
 
 
+def write_decompose_dict(case, split):
+    """system/decomposeParDict of `case`: simple decomposition into split = (nx, ny, nz)."""
+    nx, ny, nz = split
+    with open(os.path.join(case, "system", "decomposeParDict"), "w") as out:
+        out.write("FoamFile { version 2.0; format ascii; class dictionary; object decomposeParDict; }\n"
+                  f"numberOfSubdomains {nx * ny * nz};\nmethod          simple;\n"
+                  f"coeffs          {{ n ({nx} {ny} {nz}); }}\n")
+
+
 def run(args, cwd, log_name, ranks=1, expect_success=True):
     """Run a command (under mpirun when ranks > 1); return (exit code, combined output)."""
     if ranks > 1:

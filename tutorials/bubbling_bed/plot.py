@@ -3,13 +3,16 @@
 Writes bubbling_bed.csv (t, dp_20cm, mean particle height) and bubbling_bed.png, and prints
 time averages after the start-up (from 1 s on) beside the paper's values.
 """
-import glob
 import os
+import sys
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from tutorial_series import mean_height, pressure_probes, value_at  # noqa: E402
 
 BED_WEIGHT_PER_AREA = 4000 * 2526 * 3.141592653589793 * 0.0025 ** 3 / 6 * 9.81 / (0.15 * 0.0025)
 STARTUP = 1.0  # s, averages from here on
@@ -17,28 +20,7 @@ STARTUP = 1.0  # s, averages from here on
 
 def pressure_drop():
     """(t, p_inlet - p_20cm) from the probes (first probe at the inlet cell, second at 20 cm)."""
-    rows = []
-    for path in sorted(glob.glob("postProcessing/pressure/*/p"), key=lambda f: float(f.split(os.sep)[-2])):
-        for line in open(path):
-            if line.startswith("#") or not line.strip():
-                continue
-            t, p_in, p_20 = map(float, line.split()[:3])
-            rows.append((t, p_in - p_20))
-    return rows
-
-
-def mean_height():
-    return [tuple(map(float, line.split())) for line in open("mean_height.txt") if not line.startswith("#")]
-
-
-def value_at(series, t):
-    """Last sample of `series` at or before t."""
-    best = series[0][1]
-    for ts, v in series:
-        if ts > t + 1e-12:
-            break
-        best = v
-    return best
+    return [(t, p[0] - p[1]) for t, p in pressure_probes()]
 
 
 def main():

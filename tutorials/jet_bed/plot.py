@@ -7,10 +7,10 @@ the time-averaged solids fraction 1 - eps of the second half of the run, seed 00
 8b, and the particles at the end), and jet_bed_snapshots.png (the particles over the last
 0.5 s). Prints averages over the second half of the run.
 """
-import glob
 import math
 import os
 import re
+import sys
 
 import matplotlib
 
@@ -19,40 +19,14 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.collections import EllipseCollection  # noqa: E402
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from tutorial_series import mean_height, pressure_probes, value_at  # noqa: E402
+
 WIDTH, HEIGHT, DEPTH = 0.15, 0.90, 0.004  # m; depth = particle diameter (2-D rule)
 PARTICLES, DIAMETER, DENSITY, G = 2400, 0.004, 2700.0, 9.81
 PARTICLE_WEIGHT = DENSITY * math.pi * DIAMETER ** 3 / 6 * G
 BED_WEIGHT_PER_AREA = PARTICLES * PARTICLE_WEIGHT / (WIDTH * DEPTH)  # Pa
 SHOWN_HEIGHT = 0.45  # m, the paper's figures show the lower 45 cm
-
-
-def pressure_probes():
-    """(t, [p at the five probes of system/controlDict]) rows, restarts joined."""
-    rows = []
-    paths = glob.glob("postProcessing/pressure/*/p")
-    for path in sorted(paths, key=lambda f: float(f.split(os.sep)[-2])):
-        for line in open(path):
-            if line.startswith("#") or not line.strip():
-                continue
-            values = [float(v) for v in line.split()]
-            if rows and values[0] <= rows[-1][0]:
-                continue
-            rows.append((values[0], values[1:6]))
-    return rows
-
-
-def mean_height():
-    return [tuple(map(float, line.split())) for line in open("mean_height.txt") if not line.startswith("#")]
-
-
-def value_at(series, t):
-    """Last sample of `series` at or before t."""
-    best = series[0][1]
-    for ts, v in series:
-        if ts > t + 1e-12:
-            break
-        best = v
-    return best
 
 
 def latest_time_dir():

@@ -35,6 +35,13 @@ def measured_pressure_drop(case):
     return float(rows[-1][1]) - float(rows[-1][2])
 
 
+def set_inlet_velocity(case, u):
+    """Set the inlet's fixed velocity in case/0/U to (0 u 0)."""
+    path = os.path.join(case, "0", "U")
+    text = open(path).read()
+    open(path, "w").write(re.sub(r"inlet(\s*\{[^}]*value\s+uniform\s+)\(0 [0-9.]+ 0\)", rf"inlet\g<1>(0 {u} 0)", text))
+
+
 def prepare_run(source, dest, u, runner):
     """Copy the case to dest with inlet velocity u and run blockMesh and tfdemFoam there via
     runner(args, cwd, log_name)."""
@@ -45,9 +52,7 @@ def prepare_run(source, dest, u, runner):
                         ignore=shutil.ignore_patterns("polyMesh"))
     for name in ("coupling.yaml", "in.fixed_bed"):
         shutil.copy(os.path.join(source, name), dest)
-    path = os.path.join(dest, "0", "U")
-    text = open(path).read()
-    open(path, "w").write(re.sub(r"inlet(\s*\{[^}]*value\s+uniform\s+)\(0 [0-9.]+ 0\)", rf"inlet\g<1>(0 {u} 0)", text))
+    set_inlet_velocity(dest, u)
     runner(["blockMesh"], dest, "log.blockMesh")
     runner(["tfdemFoam"], dest, "log.tfdemFoam")
     return measured_pressure_drop(dest)

@@ -81,15 +81,8 @@ void DistributedCoupling::map(const ParticleView &particles) {
   MPI_Allreduce(MPI_IN_PLACE, &totals_.lowest_unfloored, 1, MPI_DOUBLE, MPI_MIN, comm_);
 }
 
-void DistributedCoupling::forces(const ParticleView &particles, const double *gas_velocity,
-                                 const double *pressure_gradient) {
-  const std::size_t owned = owned_volume_.size(), halo = halo_cells_.size();
-  const CellGas owned_gas{owned, gas_velocity, gas_.gas_fraction.data(), owned_volume_.data()};
-  const bool conservative = transfer_.method == TransferMethod::PerParticleConservative;
-  std::fill(coefficient_.begin(), coefficient_.end(), 0.0);
-  std::fill(solid_velocity_.begin(), solid_velocity_.end(), 0.0);
-  if (!conservative) averaged_cell_drag(owned_sums_, owned_gas, transfer_, coefficient_.data(), solid_velocity_.data());
-
+void DistributedCoupling::pack_owned_state(const double *gas_velocity, const double *pressure_gradient) {
+  const std::size_t owned = owned_volume_.size();
   owned_state_.resize(kStateComponents * owned);
   for (std::size_t c = 0; c < owned; ++c) {
     double *s = &owned_state_[kStateComponents * c];
@@ -103,28 +96,47 @@ void DistributedCoupling::forces(const ParticleView &particles, const double *ga
     s[8] = gas_.solid_volume[c];
     s[9] = owned_volume_[c];
   }
-  exchange_.fetch_from_owners(owned_state_, kStateComponents, halo_state_);
+}
 
-  std::vector<double> velocity(3 * halo), gas_fraction(halo), coefficient(halo), solid_velocity(3 * halo),
-      solid_volume(halo), volume(halo), gradient(3 * halo);
+void DistributedCoupling::unpack_halo_state() {
+  const std::size_t halo = halo_cells_.size();
+  for (auto *field : {&halo_.gas_fraction, &halo_.coefficient, &halo_.solid_volume, &halo_.volume}) field->resize(halo);
+  for (auto *field : {&halo_.velocity, &halo_.solid_velocity, &halo_.gradient}) field->resize(3 * halo);
   for (std::size_t c = 0; c < halo; ++c) {
     const double *s = &halo_state_[kStateComponents * c];
     for (int a = 0; a < 3; ++a) {
-      velocity[3 * c + a] = s[a];
-      solid_velocity[3 * c + a] = s[5 + a];
-      gradient[3 * c + a] = s[10 + a];
+      halo_.velocity[3 * c + a] = s[a];
+      halo_.solid_velocity[3 * c + a] = s[5 + a];
+      halo_.gradient[3 * c + a] = s[10 + a];
     }
-    gas_fraction[c] = s[3];
-    coefficient[c] = s[4];
-    solid_volume[c] = s[8];
-    volume[c] = s[9];
+    halo_.gas_fraction[c] = s[3];
+    halo_.coefficient[c] = s[4];
+    halo_.solid_volume[c] = s[8];
+    halo_.volume[c] = s[9];
   }
-  const CellSolidsState state{{halo, velocity.data(), gas_fraction.data(), volume.data()},
-                              solid_volume.data(), coefficient.data(), solid_velocity.data()};
-  const std::vector<double> velocity_at = average_to_particles(weights_, velocity.data(), 3);
-  const std::vector<double> gas_fraction_at = average_to_particles(weights_, gas_fraction.data(), 1);
+}
+
+void DistributedCoupling::forces(const ParticleView &particles, const double *gas_velocity,
+                                 const double *pressure_gradient) {
+  const std::size_t owned = owned_volume_.size(), halo = halo_cells_.size();
+  const CellGas owned_gas{owned, gas_velocity, gas_.gas_fraction.data(), owned_volume_.data()};
+  const bool conservative = transfer_.method == TransferMethod::PerParticleConservative;
+  if (conservative) {  // K and U_s come after the particle drags; none fetched before
+    std::fill(coefficient_.begin(), coefficient_.end(), 0.0);
+    std::fill(solid_velocity_.begin(), solid_velocity_.end(), 0.0);
+  } else {
+    averaged_cell_drag(owned_sums_, owned_gas, transfer_, coefficient_.data(), solid_velocity_.data());
+  }
+  pack_owned_state(gas_velocity, pressure_gradient);
+  exchange_.fetch_from_owners(owned_state_, kStateComponents, halo_state_);
+
+  unpack_halo_state();
+  const CellSolidsState state{{halo, halo_.velocity.data(), halo_.gas_fraction.data(), halo_.volume.data()},
+                              halo_.solid_volume.data(), halo_.coefficient.data(), halo_.solid_velocity.data()};
+  const std::vector<double> velocity_at = average_to_particles(weights_, halo_.velocity.data(), 3);
+  const std::vector<double> gas_fraction_at = average_to_particles(weights_, halo_.gas_fraction.data(), 1);
   const std::vector<double> gradient_at =
-      pressure_gradient ? average_to_particles(weights_, gradient.data(), 3) : std::vector<double>();
+      pressure_gradient ? average_to_particles(weights_, halo_.gradient.data(), 3) : std::vector<double>();
   const GasAtParticles at{velocity_at.data(), gas_fraction_at.data(),
                           pressure_gradient ? gradient_at.data() : nullptr, nullptr};
   const std::vector<double> particle_coefficient =

@@ -60,6 +60,15 @@ class DistributedCoupling {
  private:
   // Sum over ranks of `values` in place.
   void sum_over_ranks(double *values, int count) const;
+  // One record of kStateComponents per owned cell, for the particle ranks to fetch.
+  void pack_owned_state(const double *gas_velocity, const double *pressure_gradient);
+  // Split the fetched halo records into the per-field arrays of halo_.
+  void unpack_halo_state();
+
+  // Completed cell data of the halo cells, one field per array (storage reused every step).
+  struct HaloCells {
+    std::vector<double> velocity, gas_fraction, coefficient, solid_velocity, solid_volume, volume, gradient;
+  };
 
   MPI_Comm comm_;
   CartesianGrid grid_;
@@ -73,6 +82,7 @@ class DistributedCoupling {
   std::vector<double> halo_sums_, owned_sums_, halo_state_, owned_state_;
   GasFraction gas_;
   std::vector<double> coefficient_, solid_velocity_;
+  HaloCells halo_;
   TransferResult result_;
   CouplingTotals totals_;
 };
