@@ -53,6 +53,15 @@ void apply(const ForceRecord &r, tfdem::DemInstance &dem, long step) {
   std::copy(r.forces.begin(), r.forces.end(), dem.fluid_force());
 }
 
+// A positive whole number from argument `name`, or std::invalid_argument naming it.
+long positive_count(const char *name, const char *text) {
+  char *end = nullptr;
+  const long value = std::strtol(text, &end, 10);
+  if (end == text || *end != '\0' || value <= 0)
+    throw std::invalid_argument(std::string(name) + " must be a positive whole number, got '" + text + "'");
+  return value;
+}
+
 int replay(int argc, char **argv, int rank) {
   if (argc != 5) {
     if (rank == 0)
@@ -60,7 +69,8 @@ int replay(int argc, char **argv, int rank) {
     return 2;
   }
   const std::string script = argv[1], path = std::string(argv[2]) + "." + std::to_string(rank);
-  const long interval = std::atol(argv[3]), intervals = std::atol(argv[4]);
+  const long interval = positive_count("<coupling interval>", argv[3]);
+  const long intervals = positive_count("<intervals>", argv[4]);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error("cannot read force record " + path);
   tfdem::DemInstance dem(MPI_COMM_WORLD, script, "log.replay");
