@@ -5,6 +5,8 @@ eps_g = 1 - pi d^2/(6 s^2), plus the gas weight between the probes). Tolerance 0
 (the issue asks 3 %): the closure is Ergun itself and the gas solver's face flux is exact for
 a steady flow through the bed's top and bottom faces, so what remains is the gas momentum's
 convection and viscous terms and the approach to steady state (measured +0.09 to +0.14 %).
+The particles' total fluid force (drag + pressure gradient) must equal the same Ergun pressure
+drop over the cross-section plus the gas buoyancy, to the same 0.5 %.
 """
 import os
 import sys
@@ -22,6 +24,8 @@ def main():
         case = scratch(f"packed_bed_U{u}")
         dp = ergun.prepare_run(TUTORIAL, case, u, run)
         checks.close(f"pressure drop at U = {u} m/s (Pa)", dp, ergun.ergun_pressure_drop(u), 0.005)
+        checks.close(f"sum of particle fluid forces at U = {u} m/s (N)", ergun.measured_particle_force(case),
+                     ergun.expected_particle_force(u), 0.005)
     checks.finish()
 
 

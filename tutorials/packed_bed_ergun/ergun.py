@@ -15,6 +15,7 @@ import subprocess
 
 D, SPACING, MU, RHO, G = 0.0025, 0.00255, 1.8e-5, 1.2, 9.81
 BED_HEIGHT = 40 * SPACING
+WIDTH, PARTICLES = 24 * SPACING, 960  # the column is 24 lattice sites wide
 PROBE_GAP = 0.1785 - 0.0255
 VELOCITIES = (0.3, 0.6, 1.0)  # superficial, m/s
 EPS = 1.0 - math.pi * D ** 2 / (6 * SPACING ** 2)
@@ -26,6 +27,23 @@ def ergun_pressure_drop(u):
     per_length = (150 * eps_s ** 2 * MU * u / (EPS ** 3 * D ** 2)
                   + 1.75 * eps_s * RHO * u * u / (EPS ** 3 * D))
     return per_length * BED_HEIGHT + RHO * G * PROBE_GAP
+
+
+def expected_particle_force(u):
+    """Sum of the fluid forces on the particles (N, upward) at superficial velocity u: the
+    Ergun pressure drop of the bed over the cross-section W D (Newton's third law between the
+    phases) plus the buoyancy of the gas weight, rho g sum V_p."""
+    eps_s = 1.0 - EPS
+    per_length = (150 * eps_s ** 2 * MU * u / (EPS ** 3 * D ** 2)
+                  + 1.75 * eps_s * RHO * u * u / (EPS ** 3 * D))
+    return per_length * BED_HEIGHT * WIDTH * D + RHO * G * PARTICLES * math.pi * D ** 3 / 6
+
+
+def measured_particle_force(case):
+    """Last row of fluid_force.txt (in.fixed_bed): sum of the particles' fluid forces, y (N)."""
+    rows = [line.split() for line in open(os.path.join(case, "fluid_force.txt"))
+            if line.strip() and not line.startswith("#")]
+    return float(rows[-1][1])
 
 
 def measured_pressure_drop(case):
