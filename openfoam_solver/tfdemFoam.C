@@ -20,6 +20,7 @@ Description
 
 #include "fvCFD.H"
 #include "pimpleControl.H"
+#include "fvOptions.H"
 #include "tfdemCoupling.H"
 
 #include <chrono>
@@ -48,6 +49,7 @@ int main(int argc, char *argv[])
     #include "createControl.H"
     #include "createTimeControls.H"
     #include "createFields.H"
+    #include "createFvOptions.H"
     #include "createCoupling.H"
     #include "initContinuityErrs.H"
 

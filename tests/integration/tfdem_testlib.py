@@ -67,10 +67,10 @@ def run(args, cwd, log_name, ranks=1, expect_success=True):
     return proc.returncode, proc.stdout
 
 
-def read_probe(case, field):
+def read_probe(case, field, function="centreline"):
     """Last row of an OpenFOAM probes file: (time, [values]); vectors come as tuples."""
-    times = sorted(os.listdir(os.path.join(case, "postProcessing", "centreline")), key=float)
-    path = os.path.join(case, "postProcessing", "centreline", times[-1], field)
+    times = sorted(os.listdir(os.path.join(case, "postProcessing", function)), key=float)
+    path = os.path.join(case, "postProcessing", function, times[-1], field)
     rows = [line for line in open(path) if line.strip() and not line.startswith("#")]
     tokens = rows[-1].replace("(", " ( ").replace(")", " ) ").split()
     time, values, i = float(tokens[0]), [], 1
