@@ -1,11 +1,12 @@
 """Fluidization curve: superficial velocity stepped up then down, pressure drop per level.
 
 The bed (bed.data, about 825 spheres of seed 000 Table 1, d = 2.5 mm, rho = 2526 kg/m^3) rests
-on a distributor plate at FLOOR = 1 cm in a 10 cm wide column one diameter deep; the gas enters
-at y = 0 through the windbox cell below the plate. Each level of LEVELS is held for its
-duration (0/U's inlet table, written here); its pressure drop is the mean over the level's last
-AVERAGED_PART of p(inlet, area average) - p(PROBE_HEIGHT) less the gas weight rho_g g h between
-the two (p here includes the hydrostatic gas head).
+on a porous distributor plate at FLOOR = 1 cm in a 10 cm wide column one diameter deep; the gas
+enters at y = 0 and crosses the plate's porous body (the cell row below it, constant/fvOptions).
+Each level of LEVELS is held for its duration (0/U's inlet table, written here); its pressure
+drop is the mean over the level's last AVERAGED_PART of p(inlet, area average) - p(PROBE_HEIGHT)
+less the gas weight rho_g g h between the two (p here includes the hydrostatic gas head) and
+less the plate's own pressure drop mu d L U (Darcy).
 
 Expected:
   - plateau (levels >= FLUIDIZED) = net bed weight per cross-section N m_p (1 - rho_g/rho_p) g / (W D);
@@ -18,6 +19,8 @@ intersected with the plateau.
 import math
 import os
 import re
+import shutil
+import subprocess
 
 # (superficial velocity m/s, duration s). Fixed-bed levels settle within a few gas steps;
 # fluidized ones bubble with a period of ~0.3 s and are held 1-2 s.
@@ -34,6 +37,58 @@ FIXED_BED_LIMIT = 0.85  # falling-branch levels below 0.85 x plateau are fitted 
 
 D, RHO_P, RHO_G, MU, G = 0.0025, 2526.0, 1.2, 1.8e-5, 9.81
 WIDTH, DEPTH, FLOOR, PROBE_HEIGHT = 0.10, 0.0025, 0.01, 0.155
+
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+# The packed bed: 825 spheres settled on the plate, created 2-9.5 cm above the inlet
+PACKING_SCRIPT = os.path.join(HERE, "..", "bubbling_bed_packing", "in.pack")
+PACKING_VARIABLES = (("width", WIDTH), ("height", 0.2), ("floor", FLOOR), ("fill_top", 0.095),
+                     ("steps", 30000), ("out", "bed.data"))
+
+
+def prepare_run(source, dest, runner):
+    """Copy the case from source to dest (unless they are the same), pack its bed, write the
+    inlet table and run blockMesh and tfdemFoam there via runner(args, cwd, log_name)."""
+    if os.path.abspath(source) != os.path.abspath(dest):
+        shutil.rmtree(dest, ignore_errors=True)
+        os.makedirs(dest)
+        for sub in ("0", "constant", "system"):
+            shutil.copytree(os.path.join(source, sub), os.path.join(dest, sub),
+                            ignore=shutil.ignore_patterns("polyMesh"))
+        for name in ("coupling.yaml", "in.bed"):
+            shutil.copy(os.path.join(source, name), dest)
+    packing = ["tfdem-liggghts", "-in", PACKING_SCRIPT, "-log", "log.packing"]
+    for name, value in PACKING_VARIABLES:
+        packing += ["-var", name, str(value)]
+    runner(packing, dest, "log.packing.screen")
+    write_velocity_file(dest)
+    runner(["blockMesh"], dest, "log.blockMesh")
+    runner(["tfdemFoam"], dest, "log.tfdemFoam")
+
+
+def run_locally(args, cwd, log_name):
+    with open(os.path.join(cwd, log_name), "w") as log:
+        subprocess.run(args, cwd=cwd, stdout=log, stderr=subprocess.STDOUT, check=True)
+
+
+def distributor_darcy(case="."):
+    """The plate's Darcy coefficient d (1/m^2) from constant/fvOptions; its Forchheimer f must be
+    zero (a linear plate's area-averaged pressure drop is mu d L U_0 however the gas spreads)."""
+    path = os.path.join(case, "constant", "fvOptions")
+    text = open(path).read()
+    d = re.search(r"^\s*d\s+\(\s*(\S+)\s+(\S+)\s+(\S+)\s*\)\s*;", text, re.M)
+    f = re.search(r"^\s*f\s+\(\s*(\S+)\s+(\S+)\s+(\S+)\s*\)\s*;", text, re.M)
+    if not d or not f:
+        raise SystemExit(f"{path}: expected the distributor's 'd (dx dy dz);' and 'f (fx fy fz);'")
+    if any(float(v) != 0 for v in f.groups()):
+        raise SystemExit(f"{path}: f {f.groups()} is not zero; fluidization.py subtracts a linear"
+                         " (Darcy) plate's pressure drop only: set f (0 0 0);")
+    return float(d.group(2))
+
+
+def distributor_pressure_drop(u, darcy):
+    """Pressure drop of the plate's porous body, FLOOR thick, at superficial velocity u (Pa)."""
+    return MU * darcy * FLOOR * u
 
 
 def end_time():
@@ -169,6 +224,7 @@ def levels(case="."):
     inlet = rows(os.path.join(case, "postProcessing", "inletPressure", "0", "surfaceFieldValue.dat"))
     above = {r[0]: r[1] for r in rows(os.path.join(case, "postProcessing", "abovePressure", "0", "p"))}
     drops = [(t, p - above[t] - RHO_G * G * PROBE_HEIGHT) for t, p in inlet if t in above]
+    darcy = distributor_darcy(case)
     heights = rows(os.path.join(case, "mean_height.txt"))
     dt = dem_time_step(case)
     forces = [[r[0] * dt] + r[1:] for r in rows(os.path.join(case, "forces.txt"))]
@@ -178,7 +234,7 @@ def levels(case="."):
         eps, height = voidage(n, mean_in(heights, start, end))
         result.append({
             "u": u,
-            "dp": mean_in([(t, dp) for t, dp in drops], start, end),
+            "dp": mean_in(drops, start, end) - distributor_pressure_drop(u, darcy),
             "eps": eps,
             "height": height,
             "ergun": ergun_pressure_drop(u, eps, height),
@@ -241,3 +297,7 @@ def summary(case="."):
         "plate_share": sum(r["plate"] for r in fluidized) / len(fluidized),
         "side_share": sum(r["side"] for r in fluidized) / len(fluidized),
     }
+
+
+if __name__ == "__main__":
+    prepare_run(".", ".", run_locally)
