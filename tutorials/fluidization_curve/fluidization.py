@@ -19,8 +19,11 @@ intersected with the plateau.
 import math
 import os
 import re
-import shutil
 import subprocess
+import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from case_copy import copy_case  # noqa: E402
 
 # (superficial velocity m/s, duration s). Fixed-bed levels settle within a few gas steps;
 # fluidized ones bubble with a period of ~0.3 s and are held 1-2 s.
@@ -50,13 +53,7 @@ def prepare_run(source, dest, runner):
     """Copy the case from source to dest (unless they are the same), pack its bed, write the
     inlet table and run blockMesh and tfdemFoam there via runner(args, cwd, log_name)."""
     if os.path.abspath(source) != os.path.abspath(dest):
-        shutil.rmtree(dest, ignore_errors=True)
-        os.makedirs(dest)
-        for sub in ("0", "constant", "system"):
-            shutil.copytree(os.path.join(source, sub), os.path.join(dest, sub),
-                            ignore=shutil.ignore_patterns("polyMesh"))
-        for name in ("coupling.yaml", "in.bed"):
-            shutil.copy(os.path.join(source, name), dest)
+        copy_case(source, dest, ("coupling.yaml", "in.bed"))
     packing = ["tfdem-liggghts", "-in", PACKING_SCRIPT, "-log", "log.packing"]
     for name, value in PACKING_VARIABLES:
         packing += ["-var", name, str(value)]

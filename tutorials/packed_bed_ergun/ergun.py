@@ -10,8 +10,11 @@ see the gas weight rho g (0.1785 - 0.0255).
 import math
 import os
 import re
-import shutil
 import subprocess
+import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from case_copy import copy_case  # noqa: E402
 
 D, SPACING, MU, RHO, G = 0.0025, 0.00255, 1.8e-5, 1.2, 9.81
 BED_HEIGHT = 40 * SPACING
@@ -63,13 +66,7 @@ def set_inlet_velocity(case, u):
 def prepare_run(source, dest, u, runner):
     """Copy the case to dest with inlet velocity u and run blockMesh and tfdemFoam there via
     runner(args, cwd, log_name)."""
-    shutil.rmtree(dest, ignore_errors=True)
-    os.makedirs(dest)
-    for sub in ("0", "constant", "system"):
-        shutil.copytree(os.path.join(source, sub), os.path.join(dest, sub),
-                        ignore=shutil.ignore_patterns("polyMesh"))
-    for name in ("coupling.yaml", "in.fixed_bed"):
-        shutil.copy(os.path.join(source, name), dest)
+    copy_case(source, dest, ("coupling.yaml", "in.fixed_bed"))
     set_inlet_velocity(dest, u)
     runner(["blockMesh"], dest, "log.blockMesh")
     runner(["tfdemFoam"], dest, "log.tfdemFoam")
