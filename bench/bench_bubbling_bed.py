@@ -22,7 +22,6 @@ import re
 import shutil
 import subprocess
 import sys
-import time
 
 SOURCE = os.path.abspath(os.path.join(os.path.dirname(__file__), ".."))
 BUILD = os.environ.get("TFDEM_BUILD", os.path.join(SOURCE, "build"))
@@ -40,17 +39,15 @@ def environment():
 
 
 def run(args, cwd, log, ranks=1):
-    """Run (under mpirun for ranks > 1); return (wall seconds, output). Stops on failure."""
+    """Run (under mpirun for ranks > 1); return its output. Stops on failure."""
     if ranks > 1:
         args = ["mpirun", "-np", str(ranks)] + args
-    start = time.monotonic()
     proc = subprocess.run(args, cwd=cwd, env=environment(), stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                           text=True, errors="replace")
-    wall = time.monotonic() - start
     open(os.path.join(cwd, log), "w").write(proc.stdout)
     if proc.returncode != 0:
         sys.exit(f"'{' '.join(args)}' failed in {cwd}:\n{proc.stdout[-3000:]}")
-    return wall, proc.stdout
+    return proc.stdout
 
 
 def setting(pattern, path):
@@ -113,11 +110,11 @@ def number(pattern, text):
 def coupled_and_replay(case, ranks, interval, intervals):
     """One coupled run and its DEM-only replay: (coupled split dict, replay DEM seconds)."""
     solver = ["tfdemFoam", "-recordForces", "forces.bin"] + (["-parallel"] if ranks > 1 else [])
-    _, log = run(solver, case, "log.tfdemFoam", ranks)
+    log = run(solver, case, "log.tfdemFoam", ranks)
     dem, mapping, forces, gas = number(r"TFDEM timing: DEM (\S+) s, locate\+map (\S+) s, forces (\S+) s, gas (\S+) s", log)
     coupled_positions = number(r"TFDEM positions: sum of x, y, z over particles = (\S+) (\S+) (\S+)", log)
-    _, replay_log = run(["tfdem-dem-replay", "in.bed", "forces.bin", str(interval), str(intervals)],
-                        case, "log.replay.out", ranks)
+    replay_log = run(["tfdem-dem-replay", "in.bed", "forces.bin", str(interval), str(intervals)],
+                     case, "log.replay.out", ranks)
     replay_dem = number(r"TFDEM replay: DEM (\S+) s", replay_log)[0]
     replay_positions = number(r"TFDEM positions: sum of x, y, z over particles = (\S+) (\S+) (\S+)", replay_log)
     same = max(abs(a - b) / abs(a) for a, b in zip(coupled_positions, replay_positions))
