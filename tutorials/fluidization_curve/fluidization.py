@@ -4,12 +4,13 @@ The bed (bed.data, about 825 spheres of seed 000 Table 1, d = 2.5 mm, rho = 2526
 on a porous distributor plate at FLOOR = 1 cm in a 10 cm wide column one diameter deep; the gas
 enters at y = 0 and crosses the plate's porous body (the cell row below it, constant/fvOptions).
 Each level of LEVELS is held for its duration (0/U's inlet table, written here); its pressure
-drop is the mean over the level's last AVERAGED_PART of p(inlet, area average) - p(PROBE_HEIGHT)
-less the gas weight rho_g g h between the two (p here includes the hydrostatic gas head) and
-less the plate's own pressure drop mu d L U (Darcy).
+drop is the mean, once the bed has settled to the level (SETTLING), of p(inlet, area average) -
+p(PROBE_HEIGHT) less the gas weight rho_g g h between the two (p here includes the hydrostatic gas
+head) and less the plate's own pressure drop mu d L U (Darcy).
 
 Expected:
-  - plateau (levels >= FLUIDIZED) = net bed weight per cross-section N m_p (1 - rho_g/rho_p) g / (W D);
+  - plateau (levels >= FLUIDIZED, mean of BATCH-long batch means) = net bed weight per
+    cross-section N m_p (1 - rho_g/rho_p) g / (W D);
   - U_mf near Wen and Yu (1966), computed from Ar below; and, since the drag closure below
     eps = 0.8 is Ergun's, near Ergun's U_mf at the voidage the bed actually has at U_mf.
 U_mf is measured the standard way: the fixed-bed points of the falling branch (pressure drop
@@ -25,16 +26,18 @@ import sys
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 from case_copy import copy_case  # noqa: E402
 
-# (superficial velocity m/s, duration s). Fixed-bed levels settle within a few gas steps;
-# fluidized ones bubble with a period of ~0.3 s and are held 1-2 s.
+# (superficial velocity m/s, duration s). Fixed-bed levels settle within a few gas steps; the
+# fluidized bed bubbles with a period of ~0.3 s, so its three rising levels are held 6 s each:
+# the plateau's standard error is then about 0.1 % of the weight (0.3 s of averaging gives 0.4 %).
 LEVELS = (
     (0.4, 0.2), (0.7, 0.2), (0.9, 0.2), (1.1, 0.2), (1.3, 0.3), (1.5, 0.5),
-    (1.8, 1.0), (2.2, 2.0),
+    (1.8, 6.0), (2.0, 6.0), (2.2, 6.0),
     (1.8, 1.5), (1.5, 0.6), (1.3, 0.4),
     (1.2, 0.2), (1.1, 0.2), (1.0, 0.2), (0.9, 0.2), (0.7, 0.2), (0.4, 0.2),
 )
-RISING_COUNT = 8  # LEVELS[:8] rise to the top level, the rest fall
-AVERAGED_PART = 0.5  # last half of each level
+RISING_COUNT = 9  # LEVELS[:9] rise to the top level, the rest fall
+SETTLING = 1.0  # s: each level is averaged after min(SETTLING, half its duration)
+BATCH = 0.5  # s: plateau batch means (about two bubble periods) for its standard error
 FLUIDIZED = 1.8  # m/s: levels at or above it make the plateau (about 1.3 x U_mf)
 FIXED_BED_LIMIT = 0.85  # falling-branch levels below 0.85 x plateau are fitted as fixed bed
 
@@ -96,7 +99,7 @@ def level_windows():
     """(velocity, start, end) of each level's averaging window, in run order."""
     windows, t = [], 0.0
     for u, duration in LEVELS:
-        windows.append((u, t + (1 - AVERAGED_PART) * duration, t + duration))
+        windows.append((u, t + min(SETTLING, duration / 2), t + duration))
         t += duration
     return windows
 
@@ -213,14 +216,20 @@ def mean_in(series, start, end, column=1):
     return sum(values) / len(values)
 
 
+def pressure_drops(case="."):
+    """(t, dp) samples of p(inlet, area average) - p(PROBE_HEIGHT) - rho_g g h (Pa), the plate's
+    drop still included."""
+    inlet = rows(os.path.join(case, "postProcessing", "inletPressure", "0", "surfaceFieldValue.dat"))
+    above = {r[0]: r[1] for r in rows(os.path.join(case, "postProcessing", "abovePressure", "0", "p"))}
+    return [(t, p - above[t] - RHO_G * G * PROBE_HEIGHT) for t, p in inlet if t in above]
+
+
 def levels(case="."):
     """One dict per level, in run order: u, dp (Pa), eps and bed height from the mean particle
     height, Ergun's dp at that voidage, and the mean vertical forces on the particles as
     fractions of their weight (gas, plate, side walls)."""
     n = particle_count(case)
-    inlet = rows(os.path.join(case, "postProcessing", "inletPressure", "0", "surfaceFieldValue.dat"))
-    above = {r[0]: r[1] for r in rows(os.path.join(case, "postProcessing", "abovePressure", "0", "p"))}
-    drops = [(t, p - above[t] - RHO_G * G * PROBE_HEIGHT) for t, p in inlet if t in above]
+    drops = pressure_drops(case)
     darcy = distributor_darcy(case)
     heights = rows(os.path.join(case, "mean_height.txt"))
     dt = dem_time_step(case)
@@ -242,9 +251,21 @@ def levels(case="."):
     return result
 
 
-def plateau(result):
-    values = [r["dp"] for r in result if r["u"] >= FLUIDIZED]
-    return sum(values) / len(values)
+def plateau(case="."):
+    """Mean and standard error (Pa) of the BATCH-long batch means of the bed's pressure drop in
+    the averaging windows of the levels >= FLUIDIZED (a window's remainder shorter than a batch
+    is left out), and the number of batches."""
+    drops, darcy = pressure_drops(case), distributor_darcy(case)
+    batches = []
+    for u, start, end in level_windows():
+        if u < FLUIDIZED:
+            continue
+        count = int((end - start) / BATCH + 1e-9)
+        batches += [mean_in(drops, start + k * BATCH, start + (k + 1) * BATCH)
+                    - distributor_pressure_drop(u, darcy) for k in range(count)]
+    mean = sum(batches) / len(batches)
+    variance = sum((b - mean) ** 2 for b in batches) / (len(batches) - 1)
+    return mean, math.sqrt(variance / len(batches)), len(batches)
 
 
 def fixed_bed_fit(branch, top):
@@ -277,7 +298,7 @@ def summary(case="."):
     """The figures the README reports, as a dict."""
     result = levels(case)
     n = particle_count(case)
-    top, weight = plateau(result), bed_weight_per_area(n)
+    (top, top_error, batches), weight = plateau(case), bed_weight_per_area(n)
     u_mf, a, b, fixed = minimum_fluidization(falling(result), top)
     u_mf_rising = minimum_fluidization(rising(result), top)[0]
     # voidage of the defluidized bed: the falling branch's fixed-bed levels
@@ -285,7 +306,8 @@ def summary(case="."):
     at_1 = [r for r in falling(result) if abs(r["u"] - 1.0) < 1e-9][0]
     fluidized = [r for r in result if r["u"] >= FLUIDIZED]
     return {
-        "particles": n, "levels": result, "plateau": top, "weight": weight,
+        "particles": n, "levels": result, "plateau": top, "plateau_error": top_error,
+        "plateau_batches": batches, "weight": weight,
         "u_mf": u_mf, "u_mf_rising": u_mf_rising, "fit": (a, b), "fitted": fixed,
         "wen_yu": wen_yu_minimum_fluidization(), "eps_mf": eps_mf,
         "ergun_u_mf": ergun_minimum_fluidization(eps_mf),

@@ -8,7 +8,7 @@ import fluidization as f  # noqa: E402
 
 
 def pct(value, reference):
-    return f"{100 * (value / reference - 1):+.1f} %"
+    return f"{100 * (value / reference - 1):+.2f} %"
 
 
 def main():
@@ -23,7 +23,8 @@ def main():
               f"            {r['gas']:.3f}  {r['plate']:.3f}  {r['side']:+.3f}")
     top, weight = s["plateau"], s["weight"]
     print(f"plateau (U >= {f.FLUIDIZED} m/s) {top:.1f} Pa vs bed weight {weight:.1f} Pa: {pct(top, weight)}"
-          f"  [gas carries {s['gas_share']:.3f}, plate {s['plate_share']:.3f},"
+          f" +- {100 * s['plateau_error'] / weight:.2f} % (standard error of {s['plateau_batches']}"
+          f" {f.BATCH} s batch means)  [gas carries {s['gas_share']:.3f}, plate {s['plate_share']:.3f},"
           f" side walls {s['side_share']:+.3f} of the weight]")
     print(f"U_mf (falling branch, Ergun-form fit of {len(s['fitted'])} fixed-bed levels x plateau)"
           f" {s['u_mf']:.3f} m/s vs Wen-Yu {s['wen_yu']:.3f} m/s: {pct(s['u_mf'], s['wen_yu'])};"
