@@ -28,7 +28,8 @@ BUILD = os.environ.get("TFDEM_BUILD", os.path.join(SOURCE, "build"))
 TUTORIAL = os.path.join(SOURCE, "tutorials", "bubbling_bed")
 sys.path.insert(0, os.path.join(SOURCE, "tests", "integration"))
 import tfdem_testlib  # noqa: E402
-
+sys.path.insert(0, os.path.join(SOURCE, "tutorials"))
+from case_copy import copy_case  # noqa: E402
 
 
 def environment():
@@ -77,12 +78,7 @@ def set_interval(case, interval):
 
 
 def prepare(case, end_time, ranks, interval):
-    shutil.rmtree(case, ignore_errors=True)
-    os.makedirs(case)
-    for sub in ("0", "constant", "system"):
-        shutil.copytree(os.path.join(TUTORIAL, sub), os.path.join(case, sub), ignore=shutil.ignore_patterns("polyMesh"))
-    for name in ("coupling.yaml", "in.bed"):
-        shutil.copy(os.path.join(TUTORIAL, name), case)
+    copy_case(TUTORIAL, case, ("coupling.yaml", "in.bed"))
     packed = os.path.join(SOURCE, "tutorials", "bubbling_bed_packing", "bed.data")
     if not os.path.exists(packed):
         run([os.path.join(SOURCE, "tutorials", "bubbling_bed_packing", "Allrun")], case, "log.packing")

@@ -529,10 +529,10 @@ void Foam::TfdemCoupling::reportPositions() const
 
 void Foam::TfdemCoupling::reportTiming() const
 {
-    // Split of rank 0's coupled loop (the parts run one after the other, so a rank's sum is
-    // the loop's wall time; time a rank spends waiting for others falls in the part it waits in)
-    double split[4] = {demSeconds_, mapSeconds_, forceSeconds_, gasSeconds_};
-    MPI_Bcast(split, 4, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+    // Split of rank 0's coupled loop, the rank Info prints on (the parts run one after the
+    // other, so a rank's sum is the loop's wall time; time a rank spends waiting for others
+    // falls in the part it waits in)
+    const double split[4] = {demSeconds_, mapSeconds_, forceSeconds_, gasSeconds_};
     const double total = split[0] + split[1] + split[2] + split[3];
     if (total > 0)
     {

@@ -27,6 +27,7 @@ FACE_AREA = 0.01 * D             # m^2, one inlet face
 U_IN = 0.5                       # m/s, 0/U inlet value
 CENTRES = (0, 4, 6, 9)           # spheres per inlet cell, left to right (in.inflow)
 EPS = [1 - n * math.pi * D ** 3 / 6 / (CELL_AREA * D) for n in CENTRES]
+CELLS = 4 * 10                   # the column's cells (system/blockMeshDict)
 END_TIME = "0.02"
 
 INLET_BC = {"superficial": "inlet        { type fixedValue; value uniform 1; }",
@@ -64,7 +65,7 @@ def run_option(option, checks):
     run(["blockMesh"], case, "log.blockMesh")
     run(["tfdemFoam"], case, "log.tfdemFoam")
     internal, _ = read_field(os.path.join(case, END_TIME, "voidFraction"))
-    eps_cells = field_values(internal, 40)[:len(CENTRES)]  # blockMesh numbers the bottom row first
+    eps_cells = field_values(internal, CELLS)[:len(CENTRES)]  # blockMesh numbers the bottom row first
     for i, (eps, expected) in enumerate(zip(eps_cells, EPS)):
         checks.within(f"{option}: eps of inlet cell {i} ({CENTRES[i]} spheres)", eps, expected, 1e-12)
     flux = inlet_values(os.path.join(case, END_TIME, "voidFractionPhi"))

@@ -5,6 +5,9 @@ import subprocess
 import sys
 
 SOURCE_DIR = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
+sys.path.insert(0, os.path.join(SOURCE_DIR, "tutorials"))
+import case_copy  # noqa: E402
+
 BUILD_DIR = os.environ.get("TFDEM_BUILD", os.path.join(SOURCE_DIR, "build"))
 
 
@@ -32,13 +35,9 @@ def scratch(name):
 def copy_case(source, name):
     """Copy a case's 0/, constant/, system/ and, for coupled cases, coupling.yaml and the
     DEM input (in.*) into a fresh scratch directory."""
-    dest = scratch(name)
-    for sub in ("0", "constant", "system"):
-        shutil.copytree(os.path.join(source, sub), os.path.join(dest, sub),
-                        ignore=shutil.ignore_patterns("polyMesh"))
-    for entry in os.listdir(source):
-        if entry == "coupling.yaml" or entry.startswith("in."):
-            shutil.copy(os.path.join(source, entry), dest)
+    dest = os.path.join(BUILD_DIR, "test-runs", name)
+    names = [entry for entry in os.listdir(source) if entry == "coupling.yaml" or entry.startswith("in.")]
+    case_copy.copy_case(source, dest, names)
     return dest
 
 

@@ -3,6 +3,7 @@
 Writes bubbling_bed.csv (t, dp_20cm, mean particle height) and bubbling_bed.png, and prints
 time averages after the start-up (from 1 s on) beside the paper's values.
 """
+import math
 import os
 import sys
 
@@ -14,7 +15,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 from tutorial_series import mean_height, pressure_probes, value_at  # noqa: E402
 
-BED_WEIGHT_PER_AREA = 4000 * 2526 * 3.141592653589793 * 0.0025 ** 3 / 6 * 9.81 / (0.15 * 0.0025)
+BED_WEIGHT_PER_AREA = 4000 * 2526 * math.pi * 0.0025 ** 3 / 6 * 9.81 / (0.15 * 0.0025)
 STARTUP = 1.0  # s, averages from here on
 
 

@@ -27,6 +27,9 @@ PARTICLES, DIAMETER, DENSITY, G = 2400, 0.004, 2700.0, 9.81
 PARTICLE_WEIGHT = DENSITY * math.pi * DIAMETER ** 3 / 6 * G
 BED_WEIGHT_PER_AREA = PARTICLES * PARTICLE_WEIGHT / (WIDTH * DEPTH)  # Pa
 SHOWN_HEIGHT = 0.45  # m, the paper's figures show the lower 45 cm
+CELL_WIDTH, CELL_HEIGHT = 0.01, 0.02  # m, system/blockMeshDict
+COLUMNS, ROWS = round(WIDTH / CELL_WIDTH), round(HEIGHT / CELL_HEIGHT)
+DEM_STEP = 1e-5  # s, in.bed (dump steps to time)
 
 
 def latest_time_dir():
@@ -48,14 +51,14 @@ def internal_field(path):
 
 
 def solids_fraction_map(time_dir):
-    """Time-averaged 1 - eps on the 15 x 45 grid (rows bottom to top), or None."""
+    """Time-averaged 1 - eps on the COLUMNS x ROWS grid (rows bottom to top), or None."""
     eps = internal_field(os.path.join(time_dir, "voidFractionMean"))
     centres = internal_field(os.path.join(time_dir, "C"))
     if eps is None or centres is None:
         return None
-    grid = np.full((45, 15), np.nan)
+    grid = np.full((ROWS, COLUMNS), np.nan)
     for e, (x, y, _) in zip(eps, centres):
-        grid[int(y / 0.02), int(x / 0.01)] = 1 - e
+        grid[int(y / CELL_HEIGHT), int(x / CELL_WIDTH)] = 1 - e
     return grid
 
 
@@ -127,11 +130,11 @@ def main():
     time_dir = latest_time_dir()
     solids = solids_fraction_map(time_dir) if time_dir else None
     if solids is not None:
-        axis = solids[:, 7]
-        rows = ", ".join(f"{100 * (0.02 * j + 0.01):.0f} cm {axis[j]:.2f}" for j in (0, 2, 4, 6, 8, 10, 12, 15))
+        axis = solids[:, COLUMNS // 2]
+        rows = ", ".join(f"{100 * (CELL_HEIGHT * (j + 0.5)):.0f} cm {axis[j]:.2f}" for j in (0, 2, 4, 6, 8, 10, 12, 15))
         print(f"  time-averaged solids fraction on the jet axis: {rows}")
-        side = np.nanmean(solids[:, [0, 1, 13, 14]], axis=1)
-        rows = ", ".join(f"{100 * (0.02 * j + 0.01):.0f} cm {side[j]:.2f}" for j in (0, 2, 4, 6, 8, 10, 12, 15))
+        side = np.nanmean(solids[:, [0, 1, COLUMNS - 2, COLUMNS - 1]], axis=1)
+        rows = ", ".join(f"{100 * (CELL_HEIGHT * (j + 0.5)):.0f} cm {side[j]:.2f}" for j in (0, 2, 4, 6, 8, 10, 12, 15))
         print(f"  time-averaged solids fraction at the walls (2 columns each side): {rows}")
     frames = read_dump() if os.path.exists("particles.dump") else []
 
@@ -156,14 +159,14 @@ def main():
         fig.colorbar(image, ax=c, fraction=0.08)
     if frames:
         step, data = frames[-1]
-        draw_particles(fig.add_subplot(1, 4, 4), data, f"particles at {step * 1e-5:.3g} s\n(colour: speed 0-2 m/s)")
+        draw_particles(fig.add_subplot(1, 4, 4), data, f"particles at {step * DEM_STEP:.3g} s\n(colour: speed 0-2 m/s)")
     fig.tight_layout()
     fig.savefig("jet_bed.png", dpi=120)
     written = ["jet_bed.csv", "jet_bed.png"]
     if len(frames) >= 6:
         fig, axes = plt.subplots(1, 6, figsize=(10, 5), sharey=True)
         for ax, (step, data) in zip(axes, frames[-6:]):
-            draw_particles(ax, data, f"{step * 1e-5:.3g} s")
+            draw_particles(ax, data, f"{step * DEM_STEP:.3g} s")
         fig.tight_layout()
         fig.savefig("jet_bed_snapshots.png", dpi=120)
         written.append("jet_bed_snapshots.png")

@@ -24,22 +24,23 @@ VELOCITIES = (0.3, 0.6, 1.0)  # superficial, m/s
 EPS = 1.0 - math.pi * D ** 2 / (6 * SPACING ** 2)
 
 
+def ergun_gradient(u):
+    """Ergun (1952): the bed's pressure drop per length (Pa/m) at superficial velocity u."""
+    eps_s = 1.0 - EPS
+    return (150 * eps_s ** 2 * MU * u / (EPS ** 3 * D ** 2)
+            + 1.75 * eps_s * RHO * u * u / (EPS ** 3 * D))
+
+
 def ergun_pressure_drop(u):
     """Expected p(below) - p(above) (Pa) at superficial velocity u."""
-    eps_s = 1.0 - EPS
-    per_length = (150 * eps_s ** 2 * MU * u / (EPS ** 3 * D ** 2)
-                  + 1.75 * eps_s * RHO * u * u / (EPS ** 3 * D))
-    return per_length * BED_HEIGHT + RHO * G * PROBE_GAP
+    return ergun_gradient(u) * BED_HEIGHT + RHO * G * PROBE_GAP
 
 
 def expected_particle_force(u):
     """Sum of the fluid forces on the particles (N, upward) at superficial velocity u: the
     Ergun pressure drop of the bed over the cross-section W D (Newton's third law between the
     phases) plus the buoyancy of the gas weight, rho g sum V_p."""
-    eps_s = 1.0 - EPS
-    per_length = (150 * eps_s ** 2 * MU * u / (EPS ** 3 * D ** 2)
-                  + 1.75 * eps_s * RHO * u * u / (EPS ** 3 * D))
-    return per_length * BED_HEIGHT * WIDTH * D + RHO * G * PARTICLES * math.pi * D ** 3 / 6
+    return ergun_gradient(u) * BED_HEIGHT * WIDTH * D + RHO * G * PARTICLES * math.pi * D ** 3 / 6
 
 
 def measured_particle_force(case):
