@@ -263,6 +263,9 @@ def plateau(case="."):
         count = int((end - start) / BATCH + 1e-9)
         batches += [mean_in(drops, start + k * BATCH, start + (k + 1) * BATCH)
                     - distributor_pressure_drop(u, darcy) for k in range(count)]
+    if len(batches) < 2:
+        raise ValueError(f"{len(batches)} plateau batch(es) of {BATCH} s in the levels >= {FLUIDIZED} m/s of"
+                         " LEVELS: hold them at least 2 x BATCH beyond SETTLING for a standard error")
     mean = sum(batches) / len(batches)
     variance = sum((b - mean) ** 2 for b in batches) / (len(batches) - 1)
     return mean, math.sqrt(variance / len(batches)), len(batches)
