@@ -76,20 +76,52 @@ double mean_height(const ParticleView &p, int axis, double base) {
   return sum / p.count;
 }
 
-ForceMaps force_maps(const ParticleView &p, const int *cell_of_particle, std::size_t cell_count,
-                     const double *contact_force, const double *drag_force, double gravity) {
-  ForceMaps m;
-  m.contact.assign(cell_count, 0.0);
-  m.drag.assign(cell_count, 0.0);
+void ContactCounts::add(const ContactCounts &o) {
+  particles += o.particles;
+  contacts += o.contacts;
+  in_contact += o.in_contact;
+  multi += o.multi;
+}
+
+double ContactCounts::bulk_coordination() const { return particles > 0.0 ? contacts / particles : 0.0; }
+
+double ContactCounts::multicontact() const { return in_contact > 0.0 ? multi / in_contact : 0.0; }
+
+ContactCounts contact_counts(const int *nc, std::size_t count) {
+  ContactCounts c;
+  c.particles = static_cast<double>(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    c.contacts += nc[i];
+    c.in_contact += nc[i] >= 1 ? 1.0 : 0.0;
+    c.multi += nc[i] > 1 ? 1.0 : 0.0;
+  }
+  return c;
+}
+
+void add_force_sums(const ParticleView &p, const int *cell_of_particle, const double *force, double gravity,
+                    std::vector<double> &sums) {
+  const std::size_t cell_count = sums.size() / 3;
   for (std::size_t i = 0; i < p.count; ++i) {
     const int c = cell_of_particle[i];
-    if (c < 0 || static_cast<std::size_t>(c) >= cell_count) throw std::out_of_range("force_maps: particle in no cell");
+    if (c < 0 || static_cast<std::size_t>(c) >= cell_count) throw std::out_of_range("force map: particle in no cell");
     const double weight = sphere_volume(p.diameter[i]) * p.density[i] * gravity;
-    m.contact[c] += norm3(contact_force + 3 * i) / weight;
-    m.drag[c] += norm3(drag_force + 3 * i) / weight;
+    for (int a = 0; a < 3; ++a) sums[3 * c + a] += force[3 * i + a] / weight;
   }
+}
+
+ForceMaps force_maps(const std::vector<double> &contact_sums, const std::vector<double> &drag_sums) {
+  if (contact_sums.size() != drag_sums.size() || contact_sums.size() % 3 != 0)
+    throw std::invalid_argument("force_maps: contact and drag sums need 3 values for each cell");
+  const std::size_t cell_count = contact_sums.size() / 3;
+  ForceMaps m;
+  m.contact.resize(cell_count);
+  m.drag.resize(cell_count);
   m.ratio.resize(cell_count);
-  for (std::size_t c = 0; c < cell_count; ++c) m.ratio[c] = m.drag[c] > 0.0 ? m.contact[c] / m.drag[c] : -1.0;
+  for (std::size_t c = 0; c < cell_count; ++c) {
+    m.contact[c] = norm3(&contact_sums[3 * c]);
+    m.drag[c] = norm3(&drag_sums[3 * c]);
+    m.ratio[c] = m.drag[c] > 0.0 ? m.contact[c] / m.drag[c] : -1.0;
+  }
   return m;
 }
 

@@ -157,8 +157,14 @@ std::string ConfigSection::choice(const std::string &key, const std::string &fal
 
 void ConfigSection::reject_unknown_keys() {
   if (!node_->IsMap()) return;
+  std::vector<std::pair<std::string, YAML::Mark>> seen;
   for (const auto &entry : *node_) {
     const std::string key = entry.first.as<std::string>();
+    const auto first = std::find_if(seen.begin(), seen.end(), [&key](const auto &s) { return s.first == key; });
+    if (first != seen.end())
+      problems_->push_back(location(file_, entry.first.Mark()) + ": " + key_path(key) + ": given twice (first at " +
+                           location(file_, first->second) + "); YAML keeps one of them silently: keep one");
+    seen.emplace_back(key, entry.first.Mark());
     if (std::find(known_keys_.begin(), known_keys_.end(), key) != known_keys_.end()) continue;
     problems_->push_back(location(file_, entry.first.Mark()) + ": " + key_path(key) + ": unknown key" +
                          did_you_mean(key, known_keys_) + "; valid keys here: " + quoted_list(known_keys_));
@@ -184,6 +190,14 @@ VoidFractionOptions read_void_fraction(ConfigSection &section) {
     section.report("floor", "value 1 leaves no room for particles: the floor must be below 1 (e.g. 0.3)");
     o.gas_fraction_floor = 0.0;
   }
+  section.reject_unknown_keys();
+  return o;
+}
+
+OutputOptions read_output(ConfigSection &section) {
+  OutputOptions o;
+  o.statistics_interval = section.number("statistics_interval", 0.0, 0.0, 1e6);
+  o.particles_vtk = section.boolean("particles_vtk", true);
   section.reject_unknown_keys();
   return o;
 }
@@ -214,6 +228,8 @@ CouplingConfig parse_coupling_config(const std::string &file, const std::string 
   ConfigSection void_fraction = coupling.section("void_fraction");
   c.void_fraction = read_void_fraction(void_fraction);
   coupling.reject_unknown_keys();
+  ConfigSection output = root.section("output");
+  c.output = read_output(output);
   root.reject_unknown_keys();
   if (!problems.empty()) throw ConfigError(problems);
   return c;
@@ -243,7 +259,9 @@ std::string describe(const CouplingConfig &c) {
     << "    cube_factor: " << c.void_fraction.cube_factor << "\n"
     << "    divided_points_per_diameter: " << c.void_fraction.divided_points_per_diameter << "\n"
     << "    two_dimensional: " << (c.void_fraction.two_dimensional ? "true" : "false") << "\n"
-    << "    floor: " << c.void_fraction.gas_fraction_floor << "\n";
+    << "    floor: " << c.void_fraction.gas_fraction_floor << "\n"
+    << "output:\n  statistics_interval: " << c.output.statistics_interval << "\n"
+    << "  particles_vtk: " << (c.output.particles_vtk ? "true" : "false") << "\n";
   return s.str();
 }
 

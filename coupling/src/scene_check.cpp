@@ -10,10 +10,6 @@
 namespace tfdem {
 namespace {
 
-// Steps per contact for an accurate contact (seed 000 after eq. 26: dt <= t_c/50).
-constexpr double kStepsPerContact = 50.0;
-// Fewer steps per contact than this is an error: the contact is not resolved.
-constexpr double kMinimumStepsPerContact = 10.0;
 // Cells narrower than this many diameters make the centroid void fraction unsafe.
 constexpr double kCentroidCellsPerDiameter = 3.0;
 // Explicit drag is stable while the drag response time exceeds this many coupling times.
@@ -43,10 +39,9 @@ std::string num(double v) {
 
 void time_step_findings(const Scene &s, SceneReport &r) {
   const SceneNumbers &n = r.numbers;
-  if (s.dem_time_step > n.contact_time / kMinimumStepsPerContact)
-    add(r, Finding::Level::Error, "DEM time step",
-        "dt = " + num(s.dem_time_step) + " s is above t_c/10 = " + num(n.contact_time / kMinimumStepsPerContact) +
-            " s: contacts are not resolved; use dt <= t_c/50 = " + num(n.recommended_time_step) + " s");
+  const std::string problem = dem_step_problem(n.contact_time, s.dem_time_step);
+  if (!problem.empty())
+    add(r, Finding::Level::Error, "DEM time step", problem);
   else if (s.dem_time_step > n.recommended_time_step)
     add(r, Finding::Level::Advice, "DEM time step",
         "dt = " + num(s.dem_time_step) + " s resolves a contact with " + num(n.contact_time / s.dem_time_step) +
@@ -97,6 +92,17 @@ void gas_findings(SceneReport &r) {
 
 }  // namespace
 
+std::string dem_step_problem(double contact_time, double dt) {
+  if (std::isinf(contact_time))
+    return "the contact is overdamped (eta_n >= 2 sqrt(k_n m_eff), seed 000 eq. 26 has no real t_c): particles "
+           "do not rebound and e_n is undefined; lower the damping (seed 001 eq. 27 gives eta_n for a chosen e_n)";
+  if (dt > contact_time / kMinimumStepsPerContact)
+    return "DEM step dt = " + num(dt) + " s is above t_c/10 = " + num(contact_time / kMinimumStepsPerContact) +
+           " s (t_c = " + num(contact_time) + " s, seed 000 eq. 26): contacts are not resolved; use dt <= t_c/" +
+           num(kRecommendedStepsPerContact) + " = " + num(contact_time / kRecommendedStepsPerContact) + " s";
+  return "";
+}
+
 bool SceneReport::has_errors() const {
   for (const auto &f : findings)
     if (f.level == Finding::Level::Error) return true;
@@ -143,7 +149,7 @@ SceneReport check_scene(const Scene &s) {
   n.terminal_velocity = terminal_velocity(d, s.particle_density, s.gas, s.gravity);
   n.contact_time = contact::contact_time_from_damping(s.normal_stiffness, s.normal_damping, m_eff);
   n.restitution = contact::restitution_from_damping(s.normal_stiffness, s.normal_damping, m_eff);
-  n.recommended_time_step = contact::recommended_time_step(n.contact_time, kStepsPerContact);
+  n.recommended_time_step = contact::recommended_time_step(n.contact_time, kRecommendedStepsPerContact);
   const double eps_s = 1.0 - s.packed_gas_fraction;
   const double slip = n.minimum_fluidization / s.packed_gas_fraction;
   n.dense_drag_time = s.particle_density * eps_s /

@@ -214,10 +214,14 @@ void gas_fraction_from_solid_volume(const std::vector<double> &cell_volume, doub
     throw std::invalid_argument("gas fraction floor must be in [0, 1), got " + std::to_string(floor));
   out.floored_cells = 0;
   out.lowest_unfloored = 1.0;
+  out.lowest_cell = -1;
   out.gas_fraction.resize(cell_volume.size());
   for (std::size_t c = 0; c < cell_volume.size(); ++c) {
     const double eps = 1.0 - out.solid_volume[c] / cell_volume[c];
-    out.lowest_unfloored = std::min(out.lowest_unfloored, eps);
+    if (eps < out.lowest_unfloored) {
+      out.lowest_unfloored = eps;
+      out.lowest_cell = static_cast<int>(c);
+    }
     if (eps < floor) ++out.floored_cells;
     out.gas_fraction[c] = std::max(eps, floor);
   }

@@ -74,21 +74,58 @@ TEST(Analysis, MeanHeight) {
 }
 
 // Sums of |f| / (m g) per cell and their ratio; -1 where the drag sum is zero.
-TEST(Analysis, ForceMapsScaleByParticleWeight) {
+// Cell 0 holds two particles whose contact forces are (3, 4, 0) and (0, 0, 5) weights and
+// whose drags are (0, 1, 0) and (0.5, 0, 0) weights: the cell's summed contact force is
+// (3, 4, 5), |.| = sqrt(50) (the sum of magnitudes would be 10), the summed drag (0.5, 1, 0),
+// |.| = sqrt(1.25). Cell 1's only particle is twice as heavy (density doubled): a contact
+// force of 2 light-particle weights is 1 of its own weight.
+TEST(Analysis, ForceMapsAreMagnitudesOfCellSums) {
   Cloud c;
   c.add(0.0, 0.0, 0.0, 0.004);
   c.add(0.0, 0.0, 0.0, 0.004);
   c.add(0.0, 0.0, 0.0, 0.004);
+  c.density[2] = 5000.0;
   const int cells[] = {0, 0, 1};
-  const double weight = sphere_volume(0.004) * 2500.0 * 9.81;
-  const double contact[] = {3 * weight, 4 * weight, 0, 0, 0, 5 * weight, weight, 0, 0};
-  const double drag[] = {0, weight, 0, 0, 0.5 * weight, 0, 0, 0, 0};
-  const ForceMaps m = force_maps(c.view(), cells, 2, contact, drag, 9.81);
-  EXPECT_NEAR(m.contact[0], 5.0 + 5.0, 1e-12);
-  EXPECT_NEAR(m.drag[0], 1.5, 1e-12);
-  EXPECT_NEAR(m.ratio[0], 10.0 / 1.5, 1e-12);
+  const double w = sphere_volume(0.004) * 2500.0 * 9.81;
+  const double contact[] = {3 * w, 4 * w, 0, 0, 0, 5 * w, 2 * w, 0, 0};
+  const double drag[] = {0, w, 0, 0.5 * w, 0, 0, 0, 0, 0};
+  std::vector<double> contact_sums(6, 0.0), drag_sums(6, 0.0);
+  add_force_sums(c.view(), cells, contact, 9.81, contact_sums);
+  add_force_sums(c.view(), cells, drag, 9.81, drag_sums);
+  const ForceMaps m = force_maps(contact_sums, drag_sums);
+  EXPECT_NEAR(m.contact[0], std::sqrt(50.0), 1e-12);
+  EXPECT_NEAR(m.drag[0], std::sqrt(1.25), 1e-12);
+  EXPECT_NEAR(m.ratio[0], std::sqrt(50.0 / 1.25), 1e-12);
   EXPECT_NEAR(m.contact[1], 1.0, 1e-12);
   EXPECT_EQ(m.ratio[1], -1.0);
+}
+
+// Sums added by two "ranks" (halves of the particles) equal the sums of all at once: the
+// maps are additive before the magnitude is taken.
+TEST(Analysis, ForceSumsAddOverParticleSets) {
+  Cloud all, first, second;
+  const double f[] = {1e-4, -2e-4, 3e-5, -5e-5, 1e-4, 0.0, 2e-4, 2e-4, -1e-4, 0.0, 0.0, 7e-5};
+  const int cells[] = {0, 1, 1, 0};
+  for (int i = 0; i < 4; ++i) {
+    all.add(0.0, 0.0, 0.0, 0.003);
+    (i < 2 ? first : second).add(0.0, 0.0, 0.0, 0.003);
+  }
+  std::vector<double> whole(6, 0.0), split(6, 0.0);
+  add_force_sums(all.view(), cells, f, 9.81, whole);
+  add_force_sums(first.view(), cells, f, 9.81, split);
+  add_force_sums(second.view(), cells + 2, f + 6, 9.81, split);
+  for (int k = 0; k < 6; ++k) EXPECT_NEAR(split[k], whole[k], 1e-15);
+}
+
+// N_c = 1 2 2 1 0 (the chain above) split over two "ranks" as {1, 2} and {2, 1, 0}.
+TEST(Analysis, ContactCountsAddOverRanks) {
+  const int a[] = {1, 2}, b[] = {2, 1, 0};
+  ContactCounts counts = contact_counts(a, 2);
+  counts.add(contact_counts(b, 3));
+  EXPECT_DOUBLE_EQ(counts.bulk_coordination(), 6.0 / 5.0);
+  EXPECT_DOUBLE_EQ(counts.multicontact(), 2.0 / 4.0);
+  EXPECT_DOUBLE_EQ(ContactCounts().bulk_coordination(), 0.0);
+  EXPECT_DOUBLE_EQ(ContactCounts().multicontact(), 0.0);
 }
 
 // Seed 001 eq. 49 limits. Segregated: the large particles (volume fraction x_L) fill the

@@ -122,6 +122,25 @@ TEST(Config, UnknownChoicesListValidOnes) {
   EXPECT_TRUE(contains(p, "'ergun_wen_yu'")) << p[0];
 }
 
+TEST(Config, DuplicateKeysAreReportedWithBothLines) {
+  const auto p = problems_of(replaced(kValid, "  coupling_interval: 50\n", "  coupling_interval: 50\n  coupling_interval: 20\n"));
+  ASSERT_EQ(p.size(), 1u);
+  EXPECT_TRUE(contains(p, "case/coupling.yaml:10:3: dem.coupling_interval: given twice (first at case/coupling.yaml:9:3)"))
+      << p[0];
+}
+
+TEST(Config, OutputSection) {
+  const CouplingConfig defaults = parse_coupling_config("coupling.yaml", kValid);
+  EXPECT_EQ(defaults.output.statistics_interval, 0.0);
+  EXPECT_TRUE(defaults.output.particles_vtk);
+  const CouplingConfig c = parse_coupling_config(
+      "coupling.yaml", std::string(kValid) + "output:\n  statistics_interval: 0.01\n  particles_vtk: false\n");
+  EXPECT_DOUBLE_EQ(c.output.statistics_interval, 0.01);
+  EXPECT_FALSE(c.output.particles_vtk);
+  const auto q = problems_of(std::string(kValid) + "output:\n  statistic_interval: 0.01\n");
+  EXPECT_TRUE(contains(q, "output.statistic_interval: unknown key (did you mean 'statistics_interval'?)")) << q[0];
+}
+
 TEST(Config, MissingFileIsNamed) {
   try {
     load_coupling_config("/nonexistent/coupling.yaml");

@@ -95,6 +95,29 @@ TEST(SceneCheck, FlagsCouplingIntervalLongerThanDragResponse) {
   EXPECT_TRUE(has_finding(check_scene(s), Finding::Level::Advice, "drag coupling"));
 }
 
+// Jet bed of seed 000 with eta_n = 20 N s/m: critical damping for two 4 mm, 2700 kg/m^3
+// spheres is 2 sqrt(k m_eff) = 2 sqrt(800 * 4.524e-5 kg) = 0.38 N s/m, so the contact is
+// overdamped: an error, not t_c = inf passing the step check.
+TEST(SceneCheck, OverdampedContactIsAnError) {
+  Scene s = uniform_bed();
+  s.particle_diameter = 0.004;
+  s.particle_density = 2700.0;
+  s.normal_damping = 20.0;
+  const SceneReport r = check_scene(s);
+  EXPECT_TRUE(has_finding(r, Finding::Level::Error, "DEM time step"));
+  EXPECT_TRUE(r.has_errors());
+  EXPECT_NE(dem_step_problem(r.numbers.contact_time, 1e-5).find("overdamped"), std::string::npos);
+}
+
+// The step rule: t_c = 1e-3 s allows dt up to 1e-4 s (10 steps), the next step up is refused
+// and the message gives t_c/50 = 2e-5 s.
+TEST(SceneCheck, DemStepRuleAtItsLimit) {
+  EXPECT_EQ(dem_step_problem(1e-3, 1e-4), "");
+  const std::string problem = dem_step_problem(1e-3, 1.01e-4);
+  EXPECT_NE(problem.find("above t_c/10 = 0.0001 s"), std::string::npos);
+  EXPECT_NE(problem.find("2e-05 s"), std::string::npos);
+}
+
 TEST(SceneCheck, RejectsNonPositiveInput) {
   Scene s = uniform_bed();
   s.particle_diameter = -1.0;

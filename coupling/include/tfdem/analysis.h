@@ -30,14 +30,33 @@ double multicontact_ratio(const std::vector<int> &coordination);
 // (seed 000 Fig. 9).
 double mean_height(const ParticleView &particles, int axis, double base);
 
-// Per-cell force maps of seed 000 Fig. 7 and 12: sums of |contact force| and |drag force| of
-// the particles whose centre is in the cell, each divided by its weight m_i g, and their
-// ratio (contact / drag; -1 where the drag sum is zero, as the paper's legend).
+// Contact statistics of a set of particles from their N_c, additive over sets (MPI ranks).
+struct ContactCounts {
+  double particles = 0.0;   // particles counted
+  double contacts = 0.0;    // sum of N_c (each touching pair counted once per particle)
+  double in_contact = 0.0;  // particles with N_c >= 1
+  double multi = 0.0;       // particles with N_c > 1
+  void add(const ContactCounts &other);
+  // Bulk coordination number, sum N_c / N (seed 000 Fig. 5); 0 without particles.
+  double bulk_coordination() const;
+  // Multicontact ratio, N(N_c > 1) / N(N_c >= 1) (seed 000 Fig. 11); 0 when none touches.
+  double multicontact() const;
+};
+ContactCounts contact_counts(const int *coordination, std::size_t count);
+
+// Per-cell sums of seed 000 Fig. 7 and 12, scaled by particle weight: S_c += f_i / (m_i g)
+// over the particles i whose centre is in cell c (cell_of_particle[i]); 3 values per cell
+// in `sums`, which must hold 3 cell_count values (added to, so ranks can each add theirs).
+void add_force_sums(const ParticleView &particles, const int *cell_of_particle, const double *force, double gravity,
+                    std::vector<double> &sums);
+
+// The paper's maps from completed sums: |S_c| of the contact and the drag sums (the
+// magnitude of the cell's summed force, not the sum of magnitudes) and their ratio
+// contact / drag (-1 where the drag sum is zero, as the paper's legend).
 struct ForceMaps {
   std::vector<double> contact, drag, ratio;
 };
-ForceMaps force_maps(const ParticleView &particles, const int *cell_of_particle, std::size_t cell_count,
-                     const double *contact_force, const double *drag_force, double gravity);
+ForceMaps force_maps(const std::vector<double> &contact_sums, const std::vector<double> &drag_sums);
 
 // Degree of segregation s = (S - 1)/(S_max - 1), S = <h_small>/<h_large>,
 // S_max = (x_large + 1)/x_large with x_large the volume fraction of large particles

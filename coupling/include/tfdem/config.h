@@ -74,9 +74,22 @@ class ConfigSection {
   std::vector<std::string> known_keys_;
 };
 
+// What the coupler writes besides the gas fields (coupling.yaml `output:`).
+struct OutputOptions {
+  // Seconds between samples of the particle statistics (postProcessing/tfdemParticles: count,
+  // mass, mean height, bulk coordination number, multicontact ratio) and of the per-cell
+  // contact and drag force fields (seed 000 Fig. 5, 7, 9, 11, 12); 0 = none. A whole number
+  // of gas steps.
+  double statistics_interval = 0.0;
+  // Particles (position, velocity, diameter, N_c, contact, drag and fluid forces) as legacy
+  // VTK at every gas write time, VTK/particles_<time>.vtk.
+  bool particles_vtk = true;
+};
+
 // Module readers: each module owns its keys.
 drag::Gas read_gas(ConfigSection &section);
 VoidFractionOptions read_void_fraction(ConfigSection &section);
+OutputOptions read_output(ConfigSection &section);
 
 // coupling.yaml of a case.
 struct CouplingConfig {
@@ -91,6 +104,7 @@ struct CouplingConfig {
   bool pressure_gradient_force = true;  // -V_p grad p of eq. 28
   bool viscous_force = false;           // V_p div tau of eq. 28 (the paper neglects it)
   bool void_fraction_time_derivative = true;  // d(eps)/dt in gas continuity
+  OutputOptions output;
 };
 
 // Parse coupling.yaml from text; throws ConfigError listing every problem.

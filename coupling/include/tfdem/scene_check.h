@@ -10,6 +10,16 @@
 
 namespace tfdem {
 
+// The DEM step rule, stated once for the scene check and the solver's start-up check (seed
+// 000 after eq. 26: an accurate simulation needs dt <= t_c/50): fewer than 10 steps per
+// contact do not resolve it.
+constexpr double kRecommendedStepsPerContact = 50.0;
+constexpr double kMinimumStepsPerContact = 10.0;
+
+// What is wrong with DEM step dt for contacts of duration t_c (infinite: overdamped), with
+// the fix; "" when dt <= t_c/10.
+std::string dem_step_problem(double contact_time, double dt);
+
 struct Scene {
   double particle_diameter = 0.0;      // d_p (m)
   double particle_density = 0.0;       // rho_p (kg/m^3)

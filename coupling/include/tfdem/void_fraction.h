@@ -72,6 +72,7 @@ struct GasFraction {
   std::vector<double> gas_fraction;  // max(1 - solid_volume / V_cell, floor)
   std::size_t floored_cells = 0;     // cells where the floor replaced a lower value
   double lowest_unfloored = 1.0;     // smallest 1 - solid_volume / V_cell before the floor
+  int lowest_cell = -1;              // the cell holding it (-1 when every cell is empty)
 };
 
 // Solid volume and gas fraction per cell into `out`; cell_volume has one entry per cell.

@@ -38,6 +38,7 @@ DistributedCoupling::DistributedCoupling(MPI_Comm comm, const CartesianGrid &gri
     : comm_(comm),
       grid_(grid),
       exchange_(comm, std::move(owner_of_cell), owned_cells),
+      owned_cells_(owned_cells),
       owned_volume_(std::move(owned_volume)),
       void_fraction_(void_fraction),
       transfer_(transfer) {
@@ -77,8 +78,21 @@ void DistributedCoupling::map(const ParticleView &particles) {
   unsigned long floored = gas_.floored_cells;
   MPI_Allreduce(MPI_IN_PLACE, &floored, 1, MPI_UNSIGNED_LONG, MPI_SUM, comm_);
   totals_.floored_cells = floored;
-  totals_.lowest_unfloored = gas_.lowest_unfloored;
-  MPI_Allreduce(MPI_IN_PLACE, &totals_.lowest_unfloored, 1, MPI_DOUBLE, MPI_MIN, comm_);
+  struct {
+    double value;
+    int cell;
+  } lowest{gas_.lowest_unfloored, gas_.lowest_cell < 0 ? -1 : owned_cells_[gas_.lowest_cell]};
+  MPI_Allreduce(MPI_IN_PLACE, &lowest, 1, MPI_DOUBLE_INT, MPI_MINLOC, comm_);
+  totals_.lowest_unfloored = lowest.value;
+  totals_.lowest_cell = lowest.cell;
+}
+
+std::vector<std::size_t> DistributedCoupling::particles_in_cell(int g) const {
+  std::vector<std::size_t> found;
+  for (std::size_t p = 0; p < weights_.particle_count(); ++p)
+    for (std::size_t k = weights_.offsets[p]; k < weights_.offsets[p + 1]; ++k)
+      if (halo_cells_[weights_.cells[k]] == g) found.push_back(p);
+  return found;
 }
 
 void DistributedCoupling::pack_owned_state(const double *gas_velocity, const double *pressure_gradient) {
@@ -116,6 +130,14 @@ void DistributedCoupling::unpack_halo_state() {
   }
 }
 
+void DistributedCoupling::drop_thin_direction() {
+  for (std::size_t i = 2; i < result_.particle_force.size(); i += 3) {
+    result_.particle_force[i] = 0.0;
+    result_.particle_drag[i] = 0.0;
+  }
+  result_.momentum_imbalance[2] = 0.0;  // the particle part: sum of the drags' z components
+}
+
 void DistributedCoupling::forces(const ParticleView &particles, const double *gas_velocity,
                                  const double *pressure_gradient) {
   const std::size_t owned = owned_volume_.size(), halo = halo_cells_.size();
@@ -141,6 +163,7 @@ void DistributedCoupling::forces(const ParticleView &particles, const double *ga
                           pressure_gradient ? gradient_at.data() : nullptr, nullptr};
   const std::vector<double> particle_coefficient =
       particle_drag_and_force(weights_, particles, state, at, transfer_, result_);
+  if (void_fraction_.two_dimensional) drop_thin_direction();
 
   if (conservative) {
     accumulate_conservative_sums(weights_, particle_coefficient, result_.particle_drag, halo, halo_sums_);

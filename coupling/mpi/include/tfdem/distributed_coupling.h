@@ -6,6 +6,10 @@
 //
 // Per step: map() (void fraction on owned cells) then forces() (particle fluid forces,
 // seed 000 eq. 28, and the gas sink K, U_s on owned cells, for the method of the options).
+// Under the 2-D rule (one particle layer, gas one cell deep in z) the fluid force has no z
+// component: the gas has none, and the round-off z parts of a 2-D gas solution (~1e-14 of
+// the force) would push particles out of their layer, whose in-plane contacts then amplify
+// the offset until particles leave the mesh.
 #ifndef TFDEM_DISTRIBUTED_COUPLING_H
 #define TFDEM_DISTRIBUTED_COUPLING_H
 
@@ -27,6 +31,7 @@ namespace tfdem {
 struct CouplingTotals {
   std::size_t floored_cells = 0;     // cells where the gas-fraction floor was used
   double lowest_unfloored = 1.0;     // smallest eps before the floor
+  int lowest_cell = -1;              // global grid cell holding it (-1 when all cells are empty)
   double particle_volume = 0.0;      // sum_i V_i
   double mapped_volume = 0.0;        // sum_c (1 - eps_c) V_c
   std::array<double, 3> momentum_imbalance{};  // sum_i eps_g f_d,i - sum_c V_c K_c (u_c - U_s,c)
@@ -52,8 +57,12 @@ class DistributedCoupling {
   const std::vector<double> &gas_fraction() const { return gas_.gas_fraction; }
   const std::vector<double> &coefficient() const { return coefficient_; }
   const std::vector<double> &solid_velocity() const { return solid_velocity_; }
-  // Per local particle, after forces(): eq. 28 fluid force (3 per particle).
+  // Per local particle, after forces(): eq. 28 fluid force and its drag part eps_g f_d (3 per
+  // particle each).
   const std::vector<double> &particle_force() const { return result_.particle_force; }
+  const std::vector<double> &particle_drag() const { return result_.particle_drag; }
+  // Local particles (indices into the last map()'s view) with a share in global grid cell g.
+  std::vector<std::size_t> particles_in_cell(int g) const;
   const CouplingTotals &totals() const { return totals_; }
   const CellExchange &exchange() const { return exchange_; }
 
@@ -64,6 +73,8 @@ class DistributedCoupling {
   void pack_owned_state(const double *gas_velocity, const double *pressure_gradient);
   // Split the fetched halo records into the per-field arrays of halo_.
   void unpack_halo_state();
+  // 2-D rule: zero the thin-direction (z) component of every particle's drag and force.
+  void drop_thin_direction();
 
   // Completed cell data of the halo cells, one field per array (storage reused every step).
   struct HaloCells {
@@ -73,6 +84,7 @@ class DistributedCoupling {
   MPI_Comm comm_;
   CartesianGrid grid_;
   CellExchange exchange_;
+  std::vector<int> owned_cells_;
   std::vector<double> owned_volume_;
   VoidFractionOptions void_fraction_;
   TransferOptions transfer_;
