@@ -50,7 +50,7 @@ void apply(const ForceRecord &r, tfdem::DemInstance &dem, long step) {
     if (dem.tags()[i] != r.tags[i])
       throw std::runtime_error("replay diverged at coupling step " + std::to_string(step) +
                                ": particle order differs from the record");
-  std::copy(r.forces.begin(), r.forces.end(), dem.fluid_force());
+  dem.set_fluid_force(r.forces);
 }
 
 // A positive whole number from argument `name`, or std::invalid_argument naming it.

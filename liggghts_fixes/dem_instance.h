@@ -7,7 +7,9 @@
 #include <mpi.h>
 
 #include <cstddef>
+#include <memory>
 #include <string>
+#include <vector>
 
 namespace LAMMPS_NS {
 class LAMMPS;
@@ -16,51 +18,75 @@ class FixTfdemCoupling;
 
 namespace tfdem {
 
+class DemConsole;
+
 class DemInstance {
  public:
-  // Start LIGGGHTS on `comm` in `directory`, log to log_file (screen output to
-  // log_file + ".screen"), register our fixes and run `script` (which must set up the
-  // particles and one `fix tfdem/coupling`, and not `run`). Throws std::runtime_error naming
-  // a missing script or a script without the coupling fix.
-  DemInstance(MPI_Comm comm, const std::string &script, const std::string &log_file);
+  // Start LIGGGHTS on `comm`, log to log_file (screen output to log_file + ".screen"; its
+  // ERROR lines also go to each rank's stderr), register our fixes and run `script`, which
+  // must pass dem_script::coupled_script_problems() (one `fix tfdem/coupling`, no `run`).
+  // With `restart_file`, the script is run resumed from it (dem_script::resumed_script()).
+  // Throws std::runtime_error naming the script and every problem found.
+  DemInstance(MPI_Comm comm, const std::string &script, const std::string &log_file,
+              const std::string &restart_file = "");
   ~DemInstance();
   DemInstance(const DemInstance &) = delete;
   DemInstance &operator=(const DemInstance &) = delete;
 
-  // Advance `steps` DEM steps (LIGGGHTS `run`, set-up only the first time). With no
-  // particles and no insertion fix there is nothing to advance (and LIGGGHTS 3.8.0 stops
-  // with "Atom types must start from 1"), so nothing runs.
-  void run(long steps);
+  // Advance `steps` DEM steps (LIGGGHTS `run`; set-up only the first time and after a
+  // restart file was written). With `sample_contacts`, the fix records every particle's
+  // contact force and N_c at the last step. With no particles and no insertion fix there is
+  // nothing to advance (and LIGGGHTS 3.8.0 stops with "Atom types must start from 1").
+  void run(long steps, bool sample_contacts = false);
+  // Write a LIGGGHTS restart file (particles, contact histories, held fluid forces) to
+  // `path`, whole or not at all (written as path + ".tmp", then renamed). Collective. An
+  // empty DEM without insertion (nothing to run, nothing to save) writes none: false.
+  bool write_restart(const std::string &path);
   // True when the script has a particle insertion fix (style insert/*).
   bool inserts_particles() const;
   // Run one LIGGGHTS command (e.g. output set-up from the coupler).
   void command(const std::string &line);
   double time_step() const;
+  // DEM steps done since the start of the simulation (restarts included).
+  long long step() const;
   // Particles on this rank and their per-atom arrays (x, v: 3 per atom; radius, mass: 1).
   std::size_t local_count() const;
   const double *positions() const;
   const double *velocities() const;
   const double *radii() const;
   const double *masses() const;
-  // Atom IDs of the local particles.
+  // Atom IDs and atom types (1 .. type_count()) of the local particles.
   const int *tags() const;
-  // Fluid force applied to each local particle every DEM step until set again (3 per atom).
-  double *fluid_force();
-  // Total particles over all ranks.
+  const int *types() const;
+  int type_count() const;
+  // Set the fluid force applied to each local particle every DEM step until set again
+  // (3 per local particle, in local order).
+  void set_fluid_force(const std::vector<double> &force);
+  // Contact force (3 per atom, N) and N_c of the local particles at the last sample.
+  void contact_sample(std::vector<double> &force, std::vector<int> &coordination) const;
+  // Sum of the gravity vectors of the script's `fix gravity` commands (m/s^2); false when it
+  // has none.
+  bool gravity(double g[3]) const;
+  // Total particles over all ranks, as LIGGGHTS counts them (updated at its own checks).
   long global_count() const;
 
-  // Particle-particle (type 1) normal contact parameters of a linear model, as the script set
-  // them with fix property/global: stiffness k_n (N/m) and either absolute damping eta_n
-  // (N s/m, gamman_abs) or restitution e_n (coefficientRestitution). False when k_n is absent
-  // (e.g. a Hertz model).
+  // Normal contact parameters between atom types a and b (1-based) of a linear model, as the
+  // script set them with fix property/global: stiffness k_n (N/m) and either absolute
+  // damping eta_n (N s/m, gamman_abs) or restitution e_n (coefficientRestitution). False when
+  // k_n is absent (e.g. a Hertz model).
   struct LinearContact {
     double stiffness = 0.0;
     double damping = -1.0;      // < 0 when not given
     double restitution = -1.0;  // < 0 when not given
   };
-  bool linear_contact(LinearContact &out) const;
+  bool linear_contact(int a, int b, LinearContact &out) const;
 
  private:
+  // The script's text, checked, and resumed from restart_file when that is set.
+  std::string script_to_run(const std::string &script, const std::string &restart_file) const;
+
+  MPI_Comm comm_;
+  std::unique_ptr<DemConsole> console_;
   LAMMPS_NS::LAMMPS *lmp_ = nullptr;
   LAMMPS_NS::FixTfdemCoupling *fix_ = nullptr;
   bool set_up_ = false;
