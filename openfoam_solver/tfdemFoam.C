@@ -98,6 +98,7 @@ int main(int argc, char *argv[])
 
         if (coupling.valid())
         {
+            coupling->write();
             coupling->progress();
         }
 

@@ -1,0 +1,63 @@
+#include "tfdemForceRecord.H"
+#include "IOmanip.H"
+
+#include <mpi.h>
+
+#include <chrono>
+#include <cstdint>
+
+#include "dem_instance.h"
+
+Foam::TfdemForceRecord::TfdemForceRecord(const fileName& file)
+{
+    if (file.empty())
+    {
+        return;
+    }
+    const fileName path(file + "." + Foam::name(Pstream::myProcNo()));
+    out_.open(path, std::ios::binary);
+    if (!out_)
+    {
+        FatalErrorInFunction
+            << "-recordForces: cannot write " << path << exit(FatalError);
+    }
+}
+
+
+void Foam::TfdemForceRecord::write
+(
+    const tfdem::DemInstance& dem,
+    const std::vector<double>& force
+)
+{
+    if (!out_.is_open())
+    {
+        return;
+    }
+    const auto start = std::chrono::steady_clock::now();
+    const std::uint64_t n = dem.local_count();
+    out_.write(reinterpret_cast<const char*>(&n), sizeof(n));
+    out_.write(reinterpret_cast<const char*>(dem.tags()), n*sizeof(int));
+    out_.write(reinterpret_cast<const char*>(force.data()), 3*n*sizeof(double));
+    seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+
+void Foam::TfdemForceRecord::report(const tfdem::DemInstance& dem) const
+{
+    double positionSum[3] = {0, 0, 0};
+    for (std::size_t i = 0; i < 3*dem.local_count(); ++i)
+    {
+        positionSum[i % 3] += dem.positions()[i];
+    }
+    MPI_Allreduce(MPI_IN_PLACE, positionSum, 3, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+    Info<< "TFDEM positions: sum of x, y, z over particles = "
+        << setprecision(17) << positionSum[0] << " " << positionSum[1] << " "
+        << positionSum[2] << setprecision(IOstream::defaultPrecision()) << endl;
+    if (out_.is_open())
+    {
+        Info<< "TFDEM record: forces written in "
+            << returnReduce(seconds_, maxOp<scalar>()) << " s (not in the split below)"
+            << endl;
+    }
+}

@@ -1,0 +1,142 @@
+#include "tfdemParticleAccounting.H"
+
+#include <mpi.h>
+
+#include <algorithm>
+#include <sstream>
+
+#include "dem_instance.h"
+
+namespace
+{
+
+// Lost particles named in the message, over all ranks.
+constexpr int namedLostParticles = 10;
+
+} // End anonymous namespace
+
+
+Foam::TfdemParticleAccounting::TfdemParticleAccounting
+(
+    const tfdem::DemInstance& dem,
+    const ParticleTotals& start,
+    scalar t
+)
+{
+    totals_ = count(dem);
+    totals_.removedCount = start.removedCount;
+    totals_.removedMass = start.removedMass;
+    remember(dem, t);
+}
+
+
+Foam::ParticleTotals Foam::TfdemParticleAccounting::count
+(
+    const tfdem::DemInstance& dem
+) const
+{
+    double local[2] = {double(dem.local_count()), 0};
+    for (std::size_t i = 0; i < dem.local_count(); ++i)
+    {
+        local[1] += dem.masses()[i];
+    }
+    MPI_Allreduce(MPI_IN_PLACE, local, 2, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+    ParticleTotals t;
+    t.count = label(local[0]);
+    t.mass = local[1];
+    return t;
+}
+
+
+void Foam::TfdemParticleAccounting::remember(const tfdem::DemInstance& dem, scalar t)
+{
+    const std::size_t n = dem.local_count();
+    lastTags_.assign(dem.tags(), dem.tags() + n);
+    lastPositions_.assign(dem.positions(), dem.positions() + 3*n);
+    lastVelocities_.assign(dem.velocities(), dem.velocities() + 3*n);
+    lastTime_ = t;
+}
+
+
+void Foam::TfdemParticleAccounting::check
+(
+    const tfdem::DemInstance& dem,
+    scalar t,
+    const fileName& demLog
+)
+{
+    const ParticleTotals now = count(dem);
+    if (now.count >= totals_.count)
+    {
+        totals_.count = now.count;
+        totals_.mass = now.mass;
+        remember(dem, t);
+        return;
+    }
+    label lostHere = 0;
+    List<string> lost(Pstream::nProcs());
+    lost[Pstream::myProcNo()] = describeLost(dem, lostHere);
+    Pstream::gatherList(lost);
+    std::string named;
+    for (const string& text : lost)
+    {
+        named += text;
+    }
+    FatalErrorInFunction
+        << totals_.count - now.count << " of " << totals_.count
+        << " particles were lost in the DEM between t = " << lastTime_ << " and "
+        << t << " s (" << totals_.mass - now.mass << " kg; no outlet removes particles)."
+        << nl << "Lost particles (at most " << namedLostParticles << " per rank), at their"
+        << " last position before:" << nl << named.c_str()
+        << "LIGGGHTS drops particles that leave its domain. Likely causes: a contact that"
+        << " blew up (DEM step too large for k_n, or the damping; see the contact-time"
+        << " lines above), a particle pushed through a wall, or a domain boundary that is"
+        << " open. DEM log: " << demLog << exit(FatalError);
+}
+
+
+std::string Foam::TfdemParticleAccounting::describeLost
+(
+    const tfdem::DemInstance& dem,
+    label& lost
+) const
+{
+    // Every current ID, over all ranks (only on this error path)
+    int mine = int(dem.local_count());
+    std::vector<int> counts(Pstream::nProcs()), offsets(Pstream::nProcs() + 1, 0);
+    MPI_Allgather(&mine, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
+    for (int r = 0; r < Pstream::nProcs(); ++r)
+    {
+        offsets[r + 1] = offsets[r] + counts[r];
+    }
+    std::vector<int> present(offsets.back());
+    MPI_Allgatherv
+    (
+        dem.tags(), mine, MPI_INT, present.data(), counts.data(), offsets.data(),
+        MPI_INT, MPI_COMM_WORLD
+    );
+    std::sort(present.begin(), present.end());
+    std::ostringstream out;
+    lost = 0;
+    for (std::size_t i = 0; i < lastTags_.size(); ++i)
+    {
+        if (std::binary_search(present.begin(), present.end(), lastTags_[i]))
+        {
+            continue;
+        }
+        if (++lost <= namedLostParticles)
+        {
+            const double* x = &lastPositions_[3*i];
+            const double* v = &lastVelocities_[3*i];
+            out << "  [rank " << Pstream::myProcNo() << "] id " << lastTags_[i] << " at ("
+                << x[0] << ' ' << x[1] << ' ' << x[2] << ") m, v = (" << v[0] << ' '
+                << v[1] << ' ' << v[2] << ") m/s\n";
+        }
+    }
+    if (lost > namedLostParticles)
+    {
+        out << "  [rank " << Pstream::myProcNo() << "] and " << lost - namedLostParticles
+            << " more\n";
+    }
+    return out.str();
+}

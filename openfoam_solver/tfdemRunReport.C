@@ -1,0 +1,104 @@
+#include "tfdemRunReport.H"
+
+#include <cmath>
+
+#include "tfdem/distributed_coupling.h"
+
+Foam::TfdemRunReport::TfdemRunReport(const Time& runTime)
+:
+    runTime_(runTime),
+    wallStart_(std::chrono::steady_clock::now())
+{}
+
+
+void Foam::TfdemRunReport::couplingStep
+(
+    const tfdem::CouplingTotals& totals,
+    double remoteRecords
+)
+{
+    ++couplingSteps_;
+    remoteRecords_ += remoteRecords;
+    flooredCellSteps_ += totals.floored_cells;
+    if (totals.floored_cells)
+    {
+        Info<< "TFDEM coupling: void fraction floor used in " << label(totals.floored_cells)
+            << " cells (lowest value before it " << totals.lowest_unfloored << ")" << endl;
+    }
+    if (totals.floored_cells == 0 && totals.particle_volume > 0)
+    {
+        ++volumeCheckedSteps_;
+        maxVolumeMismatch_ = std::max
+        (
+            maxVolumeMismatch_,
+            std::abs(totals.mapped_volume - totals.particle_volume)/totals.particle_volume
+        );
+    }
+    const auto& m = totals.momentum_imbalance;
+    if (totals.drag_magnitude_sum > 0)
+    {
+        maxMomentumImbalance_ = std::max
+        (
+            maxMomentumImbalance_,
+            std::sqrt(m[0]*m[0] + m[1]*m[1] + m[2]*m[2])/totals.drag_magnitude_sum
+        );
+    }
+}
+
+
+void Foam::TfdemRunReport::progress()
+{
+    const scalar t = runTime_.value();
+    const scalar start = runTime_.startTime().value();
+    const scalar end = runTime_.endTime().value();
+    const scalar halfStep = 0.5*runTime_.deltaTValue();
+    if (t + halfStep < nextProgressTime_ && t + halfStep < end)
+    {
+        return;
+    }
+    nextProgressTime_ = t + 0.01*(end - start);
+    const double wall = std::chrono::duration<double>
+    (
+        std::chrono::steady_clock::now() - wallStart_
+    ).count();
+    const scalar done = (t - start)/(end - start);
+    Info<< "TFDEM progress: t = " << t << " s of " << end << " s, wall "
+        << label(wall) << " s, ETA " << label(done > 0 ? wall*(1 - done)/done : 0)
+        << " s" << endl;
+}
+
+
+void Foam::TfdemRunReport::report
+(
+    const tfdem::CouplingTotals& last,
+    const word& transferMethod
+) const
+{
+    const auto& m = last.momentum_imbalance;
+    Info<< "TFDEM coupling: " << couplingSteps_ << " coupling steps; void"
+        << " fraction floor used in " << flooredCellSteps_ << " cell-steps;"
+        << " last momentum imbalance (particle drag - gas sink) ("
+        << m[0] << " " << m[1] << " " << m[2] << ") N of total |drag| "
+        << last.drag_magnitude_sum << " N" << nl
+        << "TFDEM conservation: max |sum (1-eps) V_cell - sum V_p| / sum V_p = "
+        << maxVolumeMismatch_ << " over " << volumeCheckedSteps_
+        << " steps without floor; max |momentum imbalance|"
+        << " / sum |drag| = " << maxMomentumImbalance_ << " (" << transferMethod << ")"
+        << endl;
+    if (Pstream::parRun())
+    {
+        Info<< "TFDEM parallel: " << returnReduce(remoteRecords_, sumOp<scalar>())
+            << " cell records received from particles on other ranks over "
+            << couplingSteps_ << " coupling steps" << endl;
+    }
+    const double* s = seconds_;
+    const double total = s[0] + s[1] + s[2] + s[3] + s[4] + s[5];
+    if (total > 0)
+    {
+        Info<< "TFDEM timing: DEM " << s[0] << " s, locate+map " << s[1]
+            << " s, forces " << s[2] << " s, gas " << s[3] << " s, statistics " << s[4]
+            << " s, checkpoints " << s[5] << " s; (DEM + coupling + gas) / DEM = "
+            << (s[0] > 0 ? (s[0] + s[1] + s[2] + s[3])/s[0] : 0) << " on "
+            << Pstream::nProcs() << " rank(s)" << endl;
+    }
+}

@@ -1,0 +1,268 @@
+#include "tfdemStartupChecks.H"
+
+#include <mpi.h>
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "dem_instance.h"
+#include "tfdem/contact.h"
+#include "tfdem/particles.h"
+#include "tfdem/scene_check.h"
+
+namespace
+{
+
+constexpr double geometryTolerance = 1e-9;
+constexpr double propertyTolerance = 1e-9;
+
+double relativeDifference(double a, double b)
+{
+    const double scale = std::max(std::abs(a), std::abs(b));
+    return scale > 0 ? std::abs(a - b)/scale : 0;
+}
+
+// Smallest and largest of `values` over all ranks (inf, -inf when there are none).
+void globalRange(const std::vector<double>& values, double& lowest, double& highest)
+{
+    lowest = std::numeric_limits<double>::infinity();
+    highest = -lowest;
+    for (const double v : values)
+    {
+        lowest = std::min(lowest, v);
+        highest = std::max(highest, v);
+    }
+    MPI_Allreduce(MPI_IN_PLACE, &lowest, 1, MPI_DOUBLE, MPI_MIN, MPI_COMM_WORLD);
+    MPI_Allreduce(MPI_IN_PLACE, &highest, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+}
+
+} // End anonymous namespace
+
+
+void Foam::tfdemChecks::gasProperties
+(
+    const tfdem::CouplingConfig& config,
+    const dimensionedScalar& rho,
+    const dimensionedScalar& nu
+)
+{
+    const double mu = rho.value()*nu.value();
+    if
+    (
+        relativeDifference(rho.value(), config.gas.density) > 1e-12
+     || relativeDifference(mu, config.gas.viscosity) > 1e-12
+    )
+    {
+        FatalErrorInFunction
+            << "gas properties disagree: constant/transportProperties gives rho = "
+            << rho.value() << " kg/m^3, mu = rho nu = " << mu << " Pa s; "
+            << config.file.c_str() << " gives gas.density = " << config.gas.density
+            << ", gas.viscosity = " << config.gas.viscosity
+            << ". Make them equal." << exit(FatalError);
+    }
+}
+
+
+void Foam::tfdemChecks::twoDimensionalDepth
+(
+    const tfdem::CouplingConfig& config,
+    const tfdem::CartesianGrid& grid
+)
+{
+    if (!config.void_fraction.two_dimensional)
+    {
+        return;
+    }
+    const double depth = grid.spacing[2];
+    if
+    (
+        grid.count[2] != 1
+     || relativeDifference(depth, config.particle_diameter) > geometryTolerance
+    )
+    {
+        FatalErrorInFunction
+            << config.file.c_str() << ": coupling.void_fraction.two_dimensional"
+            << " is true, so the mesh must be one cell deep with depth = "
+            << "particles.diameter = " << config.particle_diameter
+            << " m (seed 000 2-D rule); the mesh has " << grid.count[2]
+            << " cell(s) of depth " << depth << " m" << exit(FatalError);
+    }
+}
+
+
+void Foam::tfdemChecks::particles
+(
+    const tfdem::CouplingConfig& config,
+    const tfdem::DemInstance& dem
+)
+{
+    const std::size_t n = dem.local_count();
+    std::vector<double> diameter(n), density(n);
+    for (std::size_t i = 0; i < n; ++i)
+    {
+        diameter[i] = 2*dem.radii()[i];
+        density[i] =
+            diameter[i] > 0 ? dem.masses()[i]/tfdem::sphere_volume(diameter[i]) : 0;
+    }
+    double dMin, dMax, rhoMin, rhoMax;
+    globalRange(diameter, dMin, dMax);
+    globalRange(density, rhoMin, rhoMax);
+    if (dMin > dMax)
+    {
+        return;  // no particles
+    }
+    if (!(dMin > 0))
+    {
+        FatalErrorInFunction
+            << config.dem_script.c_str() << ": a particle has diameter " << dMin
+            << " m; every DEM particle needs a positive diameter" << exit(FatalError);
+    }
+    if
+    (
+        relativeDifference(dMin, config.particle_diameter) > propertyTolerance
+     || relativeDifference(dMax, config.particle_diameter) > propertyTolerance
+     || relativeDifference(rhoMin, config.particle_density) > propertyTolerance
+     || relativeDifference(rhoMax, config.particle_density) > propertyTolerance
+    )
+    {
+        FatalErrorInFunction
+            << "particles disagree: the DEM (" << config.dem_script.c_str()
+            << " and its data file) has diameters " << dMin << " to " << dMax
+            << " m and densities " << rhoMin << " to " << rhoMax << " kg/m^3; "
+            << config.file.c_str() << " gives particles.diameter = "
+            << config.particle_diameter << " m, particles.density = "
+            << config.particle_density << " kg/m^3. Make them equal."
+            << exit(FatalError);
+    }
+}
+
+
+void Foam::tfdemChecks::gravity
+(
+    const uniformDimensionedVectorField& g,
+    const tfdem::DemInstance& dem
+)
+{
+    double demGravity[3];
+    if (!dem.gravity(demGravity))
+    {
+        Info<< "TFDEM coupling: the DEM script has no fix gravity: the particles feel no"
+            << " weight (the gas has constant/g = " << g.value() << " m/s^2)" << endl;
+        return;
+    }
+    const vector gDem(demGravity[0], demGravity[1], demGravity[2]);
+    if (mag(gDem - g.value()) > 1e-9*max(mag(g.value()), SMALL))
+    {
+        FatalErrorInFunction
+            << "gravity disagrees: constant/g is " << g.value()
+            << " m/s^2, the DEM script's fix gravity gives " << gDem
+            << " m/s^2. Make them equal." << exit(FatalError);
+    }
+}
+
+
+namespace
+{
+
+// Lightest particle mass of each atom type (index type - 1; infinity: a type without
+// particles, e.g. a wall material), over all ranks.
+std::vector<double> lightestMassOfType(const tfdem::DemInstance& dem)
+{
+    std::vector<double> lightest(dem.type_count(), std::numeric_limits<double>::infinity());
+    for (std::size_t i = 0; i < dem.local_count(); ++i)
+    {
+        double& m = lightest[dem.types()[i] - 1];
+        m = std::min(m, dem.masses()[i]);
+    }
+    MPI_Allreduce
+    (
+        MPI_IN_PLACE, lightest.data(), int(lightest.size()), MPI_DOUBLE, MPI_MIN,
+        MPI_COMM_WORLD
+    );
+    return lightest;
+}
+
+// Effective mass of a contact between the lightest particles of two types; a type without
+// particles is a wall (infinite mass).
+double effectiveMass(double a, double b)
+{
+    if (std::isinf(a)) return b;
+    if (std::isinf(b)) return a;
+    return tfdem::contact::effective_mass(a, b);
+}
+
+void contactTimeSteps(const fileName& script, const tfdem::DemInstance& dem)
+{
+    const std::vector<double> lightest = lightestMassOfType(dem);
+    const double dt = dem.time_step();
+    bool checked = false;
+    for (int a = 1; a <= dem.type_count(); ++a)
+    {
+        for (int b = a; b <= dem.type_count(); ++b)
+        {
+            const double mEff = effectiveMass(lightest[a - 1], lightest[b - 1]);
+            tfdem::DemInstance::LinearContact contact;
+            if
+            (
+                std::isinf(mEff) || !dem.linear_contact(a, b, contact)
+             || (contact.damping < 0 && contact.restitution < 0)
+            )
+            {
+                continue;
+            }
+            const double tc = contact.damping >= 0
+              ? tfdem::contact::contact_time_from_damping(contact.stiffness, contact.damping, mEff)
+              : tfdem::contact::contact_time(contact.stiffness, contact.restitution, mEff);
+            checked = true;
+            Info<< "TFDEM coupling: contact of atom types " << a << " and " << b
+                << ": k_n = " << contact.stiffness << " N/m, t_c = " << tc << " s (seed 000 eq. 26,"
+                << " lightest particles), " << tc/dt << " DEM steps per contact" << endl;
+            const std::string problem = tfdem::dem_step_problem(tc, dt);
+            if (!problem.empty())
+            {
+                FatalErrorInFunction
+                    << script << ": contact of atom types " << a << " and " << b
+                    << " (k_n = " << contact.stiffness << " N/m, eta_n = " << contact.damping
+                    << " N s/m, m_eff = " << mEff << " kg): " << problem.c_str()
+                    << exit(FatalError);
+            }
+        }
+    }
+    if (!checked)
+    {
+        Info<< "TFDEM coupling: no linear k_n with gamman_abs or coefficientRestitution"
+            << " in the DEM script: contact time not checked" << endl;
+    }
+}
+
+} // End anonymous namespace
+
+
+void Foam::tfdemChecks::timeSteps
+(
+    const Time& runTime,
+    const tfdem::CouplingConfig& config,
+    const tfdem::DemInstance& dem
+)
+{
+    contactTimeSteps(runTime.globalPath()/config.dem_script, dem);
+    if (runTime.controlDict().lookupOrDefault<Switch>("adjustTimeStep", false))
+    {
+        FatalErrorInFunction
+            << "system/controlDict: adjustTimeStep must be 'no' for a coupled"
+            << " case: the gas step is coupling_interval DEM steps"
+            << exit(FatalError);
+    }
+    const double demInterval = config.coupling_interval*dem.time_step();
+    if (relativeDifference(runTime.deltaTValue(), demInterval) > 1e-9)
+    {
+        FatalErrorInFunction
+            << "system/controlDict: deltaT = " << runTime.deltaTValue()
+            << " s must equal dem.coupling_interval x DEM timestep = "
+            << config.coupling_interval << " x " << dem.time_step() << " = "
+            << demInterval << " s (" << config.file.c_str()
+            << "); the coupling interval must divide the gas step evenly"
+            << exit(FatalError);
+    }
+}

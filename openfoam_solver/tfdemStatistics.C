@@ -1,0 +1,285 @@
+#include "tfdemStatistics.H"
+#include "IOmanip.H"
+
+#include <mpi.h>
+
+#include <cmath>
+
+#include "dem_instance.h"
+#include "tfdem/analysis.h"
+#include "tfdem/distributed_coupling.h"
+
+namespace
+{
+
+// Values per particle in the gathered VTK record: id, d, x (3), v (3), N_c, contact force
+// (3), drag (3), fluid force (3).
+constexpr int particleRecord = 18;
+
+} // End anonymous namespace
+
+
+Foam::TfdemStatistics::TfdemStatistics
+(
+    const fvMesh& mesh,
+    const tfdem::OutputOptions& options,
+    const tfdem::CartesianGrid& grid,
+    const std::vector<int>& gridCellOfCell,
+    const vector& g
+)
+:
+    mesh_(mesh),
+    options_(options),
+    grid_(grid),
+    gridCellOfCell_(gridCellOfCell),
+    gravity_(mag(g))
+{
+    for (direction a = 0; a < 3; ++a)
+    {
+        if (mag(g[a]) > mag(g[upAxis_]))
+        {
+            upAxis_ = a;
+        }
+    }
+    if (options.statistics_interval <= 0)
+    {
+        return;
+    }
+    const Time& runTime = mesh.time();
+    const scalar steps = options.statistics_interval/runTime.deltaTValue();
+    sampleSteps_ = std::llround(steps);
+    if (sampleSteps_ < 1 || std::abs(steps - sampleSteps_) > 1e-6*steps)
+    {
+        FatalErrorInFunction
+            << "coupling.yaml: output.statistics_interval = " << options.statistics_interval
+            << " s is not a whole number of gas steps of " << runTime.deltaTValue()
+            << " s; use e.g. " << max(label(1), sampleSteps_)*runTime.deltaTValue()
+            << exit(FatalError);
+    }
+    if (gravity_ <= 0)
+    {
+        FatalErrorInFunction
+            << "coupling.yaml: output.statistics_interval needs gravity (constant/g):"
+            << " the force fields are in units of the particles' weight" << exit(FatalError);
+    }
+    for (auto* field : {&contactForceByWeight_, &dragForceByWeight_})
+    {
+        const word name(field == &contactForceByWeight_ ? "contactForceByWeight" : "dragForceByWeight");
+        field->reset
+        (
+            new volScalarField
+            (
+                IOobject(name, runTime.timeName(), mesh, IOobject::NO_READ, IOobject::AUTO_WRITE),
+                mesh,
+                dimensionedScalar(dimless, Zero),
+                zeroGradientFvPatchScalarField::typeName
+            )
+        );
+    }
+    if (Pstream::master())
+    {
+        const fileName dir
+        (
+            runTime.globalPath()/"postProcessing"/"tfdemParticles"/runTime.timeName()
+        );
+        mkDir(dir);
+        series_.reset(new OFstream(dir/"particles.dat"));
+        *series_
+            << "# t (s)  particles  mass (kg)  mean height (m)  bulk coordination number"
+            << "  multicontact ratio" << nl;
+    }
+    Info<< "TFDEM statistics: every " << sampleSteps_ << " gas steps ("
+        << options.statistics_interval << " s) to postProcessing/tfdemParticles and the"
+        << " fields contactForceByWeight, dragForceByWeight" << endl;
+}
+
+
+Foam::TfdemStatistics::~TfdemStatistics() = default;
+
+
+bool Foam::TfdemStatistics::due(const Time& runTime) const
+{
+    return
+        (sampleSteps_ > 0 && runTime.timeIndex() % sampleSteps_ == 0)
+     || (options_.particles_vtk && runTime.writeTime());
+}
+
+
+void Foam::TfdemStatistics::writeSeriesRow
+(
+    scalar t,
+    const tfdem::DemInstance& dem,
+    const tfdem::ParticleView& p
+)
+{
+    tfdem::analysis::ContactCounts counts =
+        tfdem::analysis::contact_counts(coordination_.data(), coordination_.size());
+    double sums[6] = {counts.particles, counts.contacts, counts.in_contact, counts.multi, 0, 0};
+    for (std::size_t i = 0; i < p.count; ++i)
+    {
+        sums[4] += dem.masses()[i];
+        sums[5] += p.position[3*i + upAxis_] - grid_.origin[upAxis_];
+    }
+    MPI_Allreduce(MPI_IN_PLACE, sums, 6, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+    counts = {sums[0], sums[1], sums[2], sums[3]};
+    if (series_)
+    {
+        *series_
+            << setprecision(10) << t << ' ' << label(sums[0]) << ' ' << sums[4] << ' '
+            << (sums[0] > 0 ? sums[5]/sums[0] : 0) << ' ' << counts.bulk_coordination()
+            << ' ' << counts.multicontact() << endl;
+    }
+}
+
+
+void Foam::TfdemStatistics::updateForceFields
+(
+    const tfdem::ParticleView& p,
+    const tfdem::DistributedCoupling& core
+)
+{
+    cellOfParticle_.resize(p.count);
+    for (std::size_t i = 0; i < p.count; ++i)
+    {
+        cellOfParticle_[i] = grid_.locate(p.position + 3*i);
+    }
+    const std::size_t cells = grid_.cell_count();
+    contactSums_.assign(3*cells, 0);
+    dragSums_.assign(3*cells, 0);
+    tfdem::analysis::add_force_sums(p, cellOfParticle_.data(), contactForce_.data(), gravity_, contactSums_);
+    tfdem::analysis::add_force_sums(p, cellOfParticle_.data(), core.particle_drag().data(), gravity_, dragSums_);
+    MPI_Allreduce(MPI_IN_PLACE, contactSums_.data(), int(3*cells), MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+    MPI_Allreduce(MPI_IN_PLACE, dragSums_.data(), int(3*cells), MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+    const tfdem::analysis::ForceMaps maps = tfdem::analysis::force_maps(contactSums_, dragSums_);
+    scalarField& contact = contactForceByWeight_->primitiveFieldRef();
+    scalarField& drag = dragForceByWeight_->primitiveFieldRef();
+    forAll(contact, celli)
+    {
+        contact[celli] = maps.contact[gridCellOfCell_[celli]];
+        drag[celli] = maps.drag[gridCellOfCell_[celli]];
+    }
+    contactForceByWeight_->correctBoundaryConditions();
+    dragForceByWeight_->correctBoundaryConditions();
+}
+
+
+namespace
+{
+
+void writeVtk
+(
+    const Foam::fileName& path,
+    const std::vector<double>& all,
+    Foam::scalar t
+)
+{
+    using namespace Foam;
+    const label n = label(all.size()/particleRecord);
+    const fileName partial(path + ".tmp");
+    {
+        OFstream out(partial);
+        out << "# vtk DataFile Version 3.0" << nl
+            << "TFDEM particles at t = " << t << " s" << nl << "ASCII" << nl
+            << "DATASET POLYDATA" << nl << "POINTS " << n << " double" << nl
+            << setprecision(10);
+        const auto column = [&](int first, int width)
+        {
+            for (label i = 0; i < n; ++i)
+            {
+                for (int k = 0; k < width; ++k)
+                {
+                    out << (k ? " " : "") << all[particleRecord*i + first + k];
+                }
+                out << nl;
+            }
+        };
+        column(2, 3);
+        out << "VERTICES " << n << ' ' << 2*n << nl;
+        for (label i = 0; i < n; ++i)
+        {
+            out << "1 " << i << nl;
+        }
+        out << "POINT_DATA " << n << nl << "SCALARS id int 1" << nl << "LOOKUP_TABLE default" << nl;
+        for (label i = 0; i < n; ++i)
+        {
+            out << label(all[particleRecord*i]) << nl;
+        }
+        out << "SCALARS diameter double 1" << nl << "LOOKUP_TABLE default" << nl;
+        column(1, 1);
+        out << "VECTORS velocity double" << nl;
+        column(5, 3);
+        out << "SCALARS coordination int 1" << nl << "LOOKUP_TABLE default" << nl;
+        for (label i = 0; i < n; ++i)
+        {
+            out << label(all[particleRecord*i + 8]) << nl;
+        }
+        out << "VECTORS contactForce double" << nl;
+        column(9, 3);
+        out << "VECTORS dragForce double" << nl;
+        column(12, 3);
+        out << "VECTORS fluidForce double" << nl;
+        column(15, 3);
+    }
+    mv(partial, path);
+}
+
+} // End anonymous namespace
+
+
+void Foam::TfdemStatistics::record
+(
+    const Time& runTime,
+    const tfdem::DemInstance& dem,
+    const tfdem::ParticleView& p,
+    const tfdem::DistributedCoupling& core
+)
+{
+    dem.contact_sample(contactForce_, coordination_);
+    if (sampleSteps_ > 0)
+    {
+        updateForceFields(p, core);
+        if (runTime.timeIndex() % sampleSteps_ == 0)
+        {
+            writeSeriesRow(runTime.value(), dem, p);
+        }
+    }
+    if (!(options_.particles_vtk && runTime.writeTime()))
+    {
+        return;
+    }
+    std::vector<double> mine(particleRecord*p.count);
+    for (std::size_t i = 0; i < p.count; ++i)
+    {
+        double* r = &mine[particleRecord*i];
+        r[0] = dem.tags()[i];
+        r[1] = p.diameter[i];
+        r[8] = coordination_[i];
+        for (int k = 0; k < 3; ++k)
+        {
+            r[2 + k] = p.position[3*i + k];
+            r[5 + k] = p.velocity[3*i + k];
+            r[9 + k] = contactForce_[3*i + k];
+            r[12 + k] = core.particle_drag()[3*i + k];
+            r[15 + k] = core.particle_force()[3*i + k];
+        }
+    }
+    int size = int(mine.size());
+    std::vector<int> sizes(Pstream::nProcs()), offsets(Pstream::nProcs() + 1, 0);
+    MPI_Gather(&size, 1, MPI_INT, sizes.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
+    for (int r = 0; r < Pstream::nProcs(); ++r)
+    {
+        offsets[r + 1] = offsets[r] + sizes[r];
+    }
+    std::vector<double> all(Pstream::master() ? offsets.back() : 0);
+    MPI_Gatherv
+    (
+        mine.data(), size, MPI_DOUBLE, all.data(), sizes.data(), offsets.data(),
+        MPI_DOUBLE, 0, MPI_COMM_WORLD
+    );
+    if (Pstream::master())
+    {
+        const fileName dir(runTime.globalPath()/"VTK");
+        mkDir(dir);
+        writeVtk(dir/("particles_" + runTime.timeName() + ".vtk"), all, runTime.value());
+    }
+}
