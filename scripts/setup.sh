@@ -14,7 +14,7 @@ OPENFOAM_VERSION=1912
 OPENFOAM_SRC="$CACHE/openfoam-src"
 APT_PACKAGES=(openfoam libopenfoam liggghts libliggghts-dev libopenmpi-dev openmpi-bin
               libyaml-cpp-dev libgtest-dev googletest cmake g++ make dpkg-dev bzip2 xz-utils
-              python3 python3-matplotlib)
+              python3 python3-matplotlib python3-yaml)
 OPENFOAM_LNINCLUDE_DIRS=(OpenFOAM OSspecific/POSIX finiteVolume meshTools)
 
 log() { printf '[tfdem setup] %s\n' "$*"; }

@@ -6,8 +6,10 @@ export TFDEM_ROOT
 export TFDEM_BUILD="${TFDEM_BUILD:-$TFDEM_ROOT/build}"
 export WM_PROJECT_DIR=/usr/share/openfoam
 export PATH="$TFDEM_BUILD/openfoam_solver:$TFDEM_BUILD/liggghts_fixes:$TFDEM_BUILD/coupling:$PATH"
-# Plot scripts use Debian's python3, which has matplotlib from apt.
+# Python scripts use Debian's python3 (matplotlib, numpy, yaml from apt) and the tfdem
+# package in python/.
 export TFDEM_PYTHON=/usr/bin/python3
+export PYTHONPATH="$TFDEM_ROOT/python${PYTHONPATH:+:$PYTHONPATH}"
 if [ "$(id -u)" -eq 0 ]; then
     # Open MPI refuses to start as root without these (containers and CI run as root).
     export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1

@@ -60,7 +60,7 @@ def main():
     # k_n = 1000 N/m for 100 um spheres: t_c = 2.5e-6 s, so a 1e-4 s step is far above t_c/10.
     expect_failure(checks, "DEM step above t_c/10",
                    lambda c: edit(os.path.join(c, "in.settling"), "kn peratomtypepair 1 1e-3", "kn peratomtypepair 1 1e3"),
-                   ["DEM timestep 0.0001 s is above t_c/10", "use timestep <= t_c/50"])
+                   ["contact of atom types 1 and 1", "DEM step dt = 0.0001 s is above t_c/10", "use dt <= t_c/50"])
     checks.finish()
 
 

@@ -1,0 +1,178 @@
+"""Outputs of a case, joined over restarts.
+
+A resumed run writes its OpenFOAM-style series under postProcessing/<name>/<start time>/; the
+rows an interrupted run wrote after the time it was resumed from are superseded. LIGGGHTS
+fix-print files and dumps are appended to on a resume: a time that comes again rewinds them.
+"""
+import glob
+import os
+import re
+
+
+class OutputError(Exception):
+    """An expected output is missing or malformed; the message names the file."""
+
+
+def _numbers(line):
+    """Floats of a probes row; vectors '(x y z)' become tuples."""
+    tokens = line.replace("(", " ( ").replace(")", " ) ").split()
+    values, i = [], 0
+    while i < len(tokens):
+        if tokens[i] == "(":
+            end = tokens.index(")", i)
+            values.append(tuple(float(t) for t in tokens[i + 1:end]))
+            i = end + 1
+        else:
+            values.append(float(tokens[i]))
+            i += 1
+    return values
+
+
+def _rows(path):
+    with open(path) as f:
+        return [_numbers(line) for line in f if line.strip() and not line.lstrip().startswith("#")]
+
+
+def joined_series(case_path, name, filename):
+    """(t, [values]) rows of postProcessing/<name>/<start>/<filename> over every start time,
+    in time order; rows of a segment after the next segment's start are superseded."""
+    folders = glob.glob(os.path.join(case_path, "postProcessing", name, "*", filename))
+    if not folders:
+        raise OutputError(f"{os.path.join(case_path, 'postProcessing', name)}: no */{filename}")
+    segments = sorted(((float(p.split(os.sep)[-2]), p) for p in folders))
+    rows = []
+    for k, (_, path) in enumerate(segments):
+        until = segments[k + 1][0] if k + 1 < len(segments) else float("inf")
+        rows.extend((r[0], r[1:]) for r in _rows(path) if r[0] <= until * (1 + 1e-12) + 1e-15)
+    return rows
+
+
+def probes(case_path, name="pressure", field="p"):
+    """(t, [value at each probe]) of an OpenFOAM probes function object, joined."""
+    return joined_series(case_path, name, field)
+
+
+def probe_locations(case_path, name="pressure", field="p"):
+    """Probe locations from the header of the first segment."""
+    path = sorted(glob.glob(os.path.join(case_path, "postProcessing", name, "*", field)))[0]
+    with open(path) as f:
+        return [tuple(float(v) for v in m.group(1).split())
+                for m in (re.match(r"#\s*Probe\s+\d+\s*\(([^)]*)\)", line) for line in f) if m]
+
+
+def particle_statistics(case_path):
+    """Columns of the coupler's particle statistics (postProcessing/tfdemParticles): dict of
+    lists t, particles, mass, mean_height, bulk_coordination, multicontact."""
+    rows = joined_series(case_path, "tfdemParticles", "particles.dat")
+    keys = ("particles", "mass", "mean_height", "bulk_coordination", "multicontact")
+    out = {"t": [r[0] for r in rows]}
+    for k, key in enumerate(keys):
+        out[key] = [r[1][k] for r in rows]
+    return out
+
+
+def fix_print(path):
+    """(t, [values]) rows of a LIGGGHTS `fix print` file; a time that comes again (a resumed
+    run appending) replaces the rows from it on."""
+    out = []
+    for row in _rows(path):
+        while out and out[-1][0] >= row[0]:
+            out.pop()
+        out.append((row[0], row[1:]))
+    return out
+
+
+def dump_frames(path):
+    """{timestep: (column names, rows)} of a LIGGGHTS custom dump; a timestep written again
+    (a resumed run appending) replaces the earlier frames from it on."""
+    frames = {}
+    with open(path) as f:
+        lines = f.read().splitlines()
+    i = 0
+    while i < len(lines):
+        if lines[i].startswith("ITEM: TIMESTEP"):
+            step = int(lines[i + 1])
+            count = int(lines[i + 3])
+            columns = lines[i + 8].split()[2:]
+            rows = [[float(v) for v in line.split()] for line in lines[i + 9:i + 9 + count]]
+            for later in [s for s in frames if s >= step]:
+                del frames[later]
+            frames[step] = (columns, rows)
+            i += 9 + count
+        else:
+            i += 1
+    return frames
+
+
+def vtk_particles(path):
+    """Arrays of a particle file the coupler writes (VTK/particles_<time>.vtk): dict with
+    'position' and every POINT_DATA field (vectors as (x, y, z) tuples)."""
+    with open(path) as f:
+        tokens = f.read().split()
+    out, i = {}, 0
+    n = None
+    while i < len(tokens):
+        word = tokens[i]
+        if word == "POINTS":
+            n = int(tokens[i + 1])
+            values = [float(v) for v in tokens[i + 3:i + 3 + 3 * n]]
+            out["position"] = [tuple(values[3 * k:3 * k + 3]) for k in range(n)]
+            i += 3 + 3 * n
+        elif word == "SCALARS":
+            name, kind = tokens[i + 1], tokens[i + 2]
+            start = tokens.index("LOOKUP_TABLE", i) + 2
+            cast = int if kind == "int" else float
+            out[name] = [cast(v) for v in tokens[start:start + n]]
+            i = start + n
+        elif word == "VECTORS":
+            name = tokens[i + 1]
+            values = [float(v) for v in tokens[i + 3:i + 3 + 3 * n]]
+            out[name] = [tuple(values[3 * k:3 * k + 3]) for k in range(n)]
+            i += 3 + 3 * n
+        else:
+            i += 1
+    if n is None:
+        raise OutputError(f"{path}: no POINTS")
+    return out
+
+
+def times(case_path):
+    """Time directories of a case (numbers), sorted."""
+    out = []
+    for name in os.listdir(case_path):
+        try:
+            value = float(name)
+        except ValueError:
+            continue
+        if os.path.isdir(os.path.join(case_path, name)):
+            out.append((value, name))
+    return [name for _, name in sorted(out)]
+
+
+def field(case_path, time_name, name):
+    """Internal values of an ASCII OpenFOAM volume field: a list of floats or of (x, y, z);
+    a uniform field gives a one-element list."""
+    path = os.path.join(case_path, time_name, name)
+    with open(path) as f:
+        text = f.read()
+    uniform = re.search(r"internalField\s+uniform\s+([^;]+);", text)
+    if uniform:
+        value = uniform.group(1).strip()
+        return [tuple(float(v) for v in value.strip("()").split())] if value.startswith("(") else [float(value)]
+    found = re.search(r"internalField\s+nonuniform\s+List<(\w+)>\s*(\d+)\s*\(", text)
+    if not found:
+        raise OutputError(f"{path}: no internalField")
+    count, body = int(found.group(2)), text[found.end():]
+    if found.group(1) == "scalar":
+        return [float(v) for v in body.split(None, count)[:count]]
+    values = re.findall(r"\(([^()]*)\)", body)[:count]
+    return [tuple(float(v) for v in value.split()) for value in values]
+
+
+def log_numbers(path, pattern):
+    """Floats of the groups of the last match of a regular expression in a log, or None."""
+    with open(path, errors="replace") as f:
+        found = None
+        for found in re.finditer(pattern, f.read()):
+            pass
+    return [float(g) for g in found.groups()] if found else None

@@ -1,0 +1,113 @@
+"""Joint checkpoint/restart of gas and particles (seed 000's uniform-inflow bed, 0.2 s).
+
+For 1 and 2 ranks: run 0.2 s straight through; run it again, kill it with SIGKILL after the
+checkpoint at 0.1 s was written, and resume with startFrom latestTime. Expected: bit for bit
+the same state at 0.2 s -- the gas fields (p, U, voidFraction) and the whole DEM state (the
+LIGGGHTS restart file: positions, velocities, spins, contact histories, held fluid forces) --
+and the same particle statistics and pressure probes once the resumed series are joined.
+Bitwise holds because the checkpoint keeps every value the next step reads (fields at 17
+digits, the superficial flux, the momentum pressure gradient, the held forces) and the DEM
+sets up again after writing its restart file, as a resumed DEM does. Then: a checkpoint
+without its marker (a run killed while writing it) is refused as a start time.
+"""
+import os
+import signal
+import time
+
+from tfdem import TUTORIALS
+from tfdem.case import Case
+from tfdem.outputs import joined_series
+from tfdem.run import RunError, decompose, run, start
+from tfdem_testlib import Checks, scratch
+
+END_TIME, WRITE_INTERVAL, KILL_AFTER = 0.2, 0.1, 0.15
+
+
+def packed_bed():
+    where = scratch("restart_packing")
+    run(["tfdem-liggghts", "-in", os.path.join(TUTORIALS, "bubbling_bed_packing", "in.pack"), "-var", "steps",
+         "20000", "-var", "out", "bed.data", "-log", "log.liggghts"], where, "log.screen")
+    return os.path.join(where, "bed.data")
+
+
+def prepared(name, bed, ranks):
+    case = Case(os.path.join(TUTORIALS, "bubbling_bed")).copy_to(scratch(name))
+    os.symlink(bed, case.file("bed.data"))
+    case.set_control(endTime=END_TIME, writeInterval=WRITE_INTERVAL, writePrecision=17)
+    case.set_coupling("output.statistics_interval", 0.01)
+    run(["blockMesh"], case.path, "log.blockMesh")
+    if ranks > 1:
+        decompose(case.path, (ranks, 1, 1))
+    return case
+
+
+def kill_after(case, ranks, t_kill):
+    """Run from the start and SIGKILL the whole run once the log reaches t_kill."""
+    proc = start(["tfdemFoam"], case.path, "log.killed", ranks)
+    log = case.file("log.killed")
+    while proc.poll() is None:
+        if f"\nTime = {t_kill}\n" in open(log, errors="replace").read():
+            os.killpg(proc.pid, signal.SIGKILL)
+            break
+        time.sleep(0.2)
+    proc.wait()
+
+
+def field_files(case, ranks, time_name):
+    roots = [case.file(f"processor{r}") for r in range(ranks)] if ranks > 1 else [case.path]
+    return [os.path.join(root, time_name, name) for root in roots for name in ("p", "U", "voidFraction")]
+
+
+def same_bytes(a, b):
+    with open(a, "rb") as fa, open(b, "rb") as fb:
+        return fa.read() == fb.read()
+
+
+def check_ranks(checks, bed, ranks):
+    label = f"{ranks} rank(s)"
+    straight = prepared(f"restart_straight_{ranks}", bed, ranks)
+    run(["tfdemFoam"], straight.path, "log.tfdemFoam", ranks)
+    resumed = prepared(f"restart_resumed_{ranks}", bed, ranks)
+    kill_after(resumed, ranks, KILL_AFTER)
+    checks.true(f"{label}: killed run left the checkpoint at 0.1 s",
+                os.path.isfile(resumed.file("0.1", "tfdem.checkpoint")))
+    checks.true(f"{label}: killed run stopped before 0.2 s", not os.path.isdir(resumed.file("0.2")))
+    resumed.set_control(startFrom="latestTime")
+    _, output = run(["tfdemFoam"], resumed.path, "log.tfdemFoam", ranks)
+    checks.true(f"{label}: resumed from the checkpoint", "resuming gas and particles from t = 0.1 s" in output)
+    for a, b in zip(field_files(straight, ranks, "0.2"), field_files(resumed, ranks, "0.2")):
+        checks.true(f"{label}: {os.path.relpath(a, straight.path)} bit for bit", same_bytes(a, b))
+    checks.true(f"{label}: DEM state at 0.2 s (LIGGGHTS restart file) bit for bit",
+                same_bytes(straight.file("0.2", "dem.restart"), resumed.file("0.2", "dem.restart")))
+    for name, filename in (("tfdemParticles", "particles.dat"), ("pressure", "p")):
+        a, b = joined_series(straight.path, name, filename), joined_series(resumed.path, name, filename)
+        # values bit for bit; times to round-off (the straight run's clock is a sum of steps,
+        # the resumed one starts from 0.1 as written)
+        same = len(a) == len(b) > 0 and all(abs(ta - tb) < 1e-12 and va == vb for (ta, va), (tb, vb) in zip(a, b))
+        checks.true(f"{label}: {name} series joined over the restart equals the straight run's", same,
+                    f"({len(b)} rows vs {len(a)})")
+    return resumed
+
+
+def check_incomplete_checkpoint(checks, case):
+    os.remove(case.file("0.2", "tfdem.checkpoint"))
+    code, output = run(["tfdemFoam"], case.path, "log.incomplete", expect_success=False)
+    checks.true("checkpoint without its marker is refused", code != 0, f"(exit code {code})")
+    checks.true("the message says it is incomplete and what to delete",
+                "the checkpoint at t = 0.2 s is incomplete" in output and "start from the time before" in output)
+
+
+def main():
+    checks = Checks()
+    bed = packed_bed()
+    try:
+        resumed = check_ranks(checks, bed, 1)
+        check_ranks(checks, bed, 2)
+        check_incomplete_checkpoint(checks, resumed)
+    except RunError as e:
+        checks.true(str(e), False)
+    checks.finish()
+
+
+if __name__ == "__main__":
+    main()
