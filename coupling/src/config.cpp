@@ -221,6 +221,12 @@ CouplingConfig parse_coupling_config(const std::string &file, const std::string 
   ConfigSection coupling = root.section("coupling");
   c.transfer.method = transfer_method_from_name(coupling.choice("transfer", "averaged", transfer_method_names()));
   c.transfer.law = drag::law_from_name(coupling.choice("drag_law", "ergun_wen_yu", drag::law_names()));
+  const std::string gas_velocity = coupling.choice("gas_velocity_at_particle", "cell", gas_at_particle_names());
+  c.transfer.gas_velocity = gas_velocity == "interpolated" ? GasAtParticle::Interpolated : GasAtParticle::Cell;
+  if (c.transfer.gas_velocity == GasAtParticle::Interpolated && c.transfer.method == TransferMethod::Averaged)
+    coupling.report("gas_velocity_at_particle", "'interpolated' applies to the per-particle transfers; 'averaged' "
+                                                "uses the cell's mean gas velocity (eq. 33): remove the key or use "
+                                                "transfer: per_particle");
   c.transfer.gas = c.gas;
   c.pressure_gradient_force = coupling.boolean("pressure_gradient_force", true);
   c.viscous_force = coupling.boolean("viscous_force", false);
@@ -252,6 +258,7 @@ std::string describe(const CouplingConfig &c) {
     << "dem:\n  script: " << c.dem_script << "\n  coupling_interval: " << c.coupling_interval << "\n"
     << "coupling:\n  transfer: " << transfer_method_names()[static_cast<int>(c.transfer.method)] << "\n"
     << "  drag_law: " << drag::law_name(c.transfer.law) << "\n"
+    << "  gas_velocity_at_particle: " << gas_at_particle_names()[static_cast<int>(c.transfer.gas_velocity)] << "\n"
     << "  pressure_gradient_force: " << (c.pressure_gradient_force ? "true" : "false") << "\n"
     << "  viscous_force: " << (c.viscous_force ? "true" : "false") << "\n"
     << "  void_fraction_time_derivative: " << (c.void_fraction_time_derivative ? "true" : "false") << "\n"

@@ -62,6 +62,11 @@ const std::vector<std::string> &transfer_method_names() {
   return names;
 }
 
+const std::vector<std::string> &gas_at_particle_names() {
+  static const std::vector<std::string> names = {"cell", "interpolated"};
+  return names;
+}
+
 TransferMethod transfer_method_from_name(const std::string &name) {
   return static_cast<TransferMethod>(index_of_name(name, transfer_method_names(), "transfer method"));
 }

@@ -270,8 +270,7 @@ std::vector<double> cell_volumes(const CartesianGrid &grid, bool two_dimensional
   return std::vector<double>(grid.cell_count(), v);
 }
 
-void interpolate(const CartesianGrid &grid, const double *cell_field, int components,
-                 const double *p, double *out) {
+int interpolation_stencil(const CartesianGrid &grid, const double *p, int cells[8], double weights[8]) {
   int base[3];
   double t[3];
   for (int a = 0; a < 3; ++a) {
@@ -284,14 +283,44 @@ void interpolate(const CartesianGrid &grid, const double *cell_field, int compon
     base[a] = std::clamp(static_cast<int>(std::floor(s)), 0, grid.count[a] - 2);
     t[a] = s - base[a];
   }
-  for (int c = 0; c < components; ++c) out[c] = 0.0;
+  int n = 0;
   for (int corner = 0; corner < 8; ++corner) {
     const int di = corner & 1, dj = (corner >> 1) & 1, dk = (corner >> 2) & 1;
     if ((di && grid.count[0] == 1) || (dj && grid.count[1] == 1) || (dk && grid.count[2] == 1)) continue;
-    const double w = (di ? t[0] : 1.0 - t[0]) * (dj ? t[1] : 1.0 - t[1]) * (dk ? t[2] : 1.0 - t[2]);
-    const double *v = cell_field + components * grid.flat(base[0] + di, base[1] + dj, base[2] + dk);
-    for (int c = 0; c < components; ++c) out[c] += w * v[c];
+    weights[n] = (di ? t[0] : 1.0 - t[0]) * (dj ? t[1] : 1.0 - t[1]) * (dk ? t[2] : 1.0 - t[2]);
+    cells[n++] = grid.flat(base[0] + di, base[1] + dj, base[2] + dk);
   }
+  return n;
+}
+
+void interpolate(const CartesianGrid &grid, const double *cell_field, int components,
+                 const double *p, double *out) {
+  int cells[8];
+  double weights[8];
+  const int n = interpolation_stencil(grid, p, cells, weights);
+  for (int c = 0; c < components; ++c) out[c] = 0.0;
+  for (int k = 0; k < n; ++k)
+    for (int c = 0; c < components; ++c) out[c] += weights[k] * cell_field[components * cells[k] + c];
+}
+
+void add_interpolation_stencils(const CartesianGrid &grid, const ParticleView &particles, CellWeights &w) {
+  CellWeights out;
+  out.offsets.reserve(w.offsets.size());
+  for (std::size_t p = 0; p < w.particle_count(); ++p) {
+    for (std::size_t k = w.offsets[p]; k < w.offsets[p + 1]; ++k) {
+      out.cells.push_back(w.cells[k]);
+      out.weights.push_back(w.weights[k]);
+    }
+    int cells[8];
+    double unused[8];
+    const int n = interpolation_stencil(grid, particles.position + 3 * p, cells, unused);
+    for (int k = 0; k < n; ++k) {
+      out.cells.push_back(cells[k]);
+      out.weights.push_back(0.0);
+    }
+    out.offsets.push_back(out.cells.size());
+  }
+  w = std::move(out);
 }
 
 }  // namespace tfdem

@@ -95,6 +95,7 @@ struct Bed {
 struct Case {
   VoidFractionMethod void_fraction;
   TransferMethod transfer;
+  GasAtParticle gas_velocity = GasAtParticle::Cell;
 };
 
 class DistributedCouplingTest : public ::testing::TestWithParam<Case> {};
@@ -109,7 +110,10 @@ Reference serial(const Bed &b, const VoidFractionOptions &vf, const TransferOpti
   Reference ref;
   const CellWeights w = compute_weights(b.grid, b.view(), vf);
   ref.fraction = map_gas_fraction(w, b.view(), b.cell_volume, vf.gas_fraction_floor);
-  const std::vector<double> u_at = average_to_particles(w, b.cell_velocity.data(), 3);
+  std::vector<double> u_at = average_to_particles(w, b.cell_velocity.data(), 3);
+  if (to.gas_velocity == GasAtParticle::Interpolated)  // trilinear from the whole grid's field
+    for (std::size_t i = 0; i < b.diameter.size(); ++i)
+      interpolate(b.grid, b.cell_velocity.data(), 3, &b.position[3 * i], &u_at[3 * i]);
   const std::vector<double> eps_at = average_to_particles(w, ref.fraction.gas_fraction.data(), 1);
   const std::vector<double> grad_at = average_to_particles(w, b.cell_gradient.data(), 3);
   const CellGas cells{b.cell_volume.size(), b.cell_velocity.data(), ref.fraction.gas_fraction.data(),
@@ -125,6 +129,7 @@ TEST_P(DistributedCouplingTest, EqualsSerialCore) {
   vf.two_dimensional = true;
   TransferOptions to;
   to.method = GetParam().transfer;
+  to.gas_velocity = GetParam().gas_velocity;
   to.law = drag::Law::ErgunWenYu;
   const Reference ref = serial(b, vf, to);
 
@@ -195,7 +200,10 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{VoidFractionMethod::Divided, TransferMethod::Averaged},
                       Case{VoidFractionMethod::PorousCube, TransferMethod::PerParticle},
                       Case{VoidFractionMethod::Divided, TransferMethod::PerParticleConservative},
-                      Case{VoidFractionMethod::Centroid, TransferMethod::PerParticleConservative}));
+                      Case{VoidFractionMethod::Centroid, TransferMethod::PerParticleConservative},
+                      Case{VoidFractionMethod::Centroid, TransferMethod::PerParticle, GasAtParticle::Interpolated},
+                      Case{VoidFractionMethod::PorousCube, TransferMethod::PerParticleConservative,
+                           GasAtParticle::Interpolated}));
 
 // Under the 2-D rule the fluid force has no z component even where the gas data have one
 // (round-off of a 2-D gas solution); in 3-D the z component is kept.

@@ -141,6 +141,17 @@ TEST(Config, OutputSection) {
   EXPECT_TRUE(contains(q, "output.statistic_interval: unknown key (did you mean 'statistics_interval'?)")) << q[0];
 }
 
+TEST(Config, GasVelocityAtParticle) {
+  const CouplingConfig c = parse_coupling_config(
+      "coupling.yaml", replaced(kValid, "  drag_law: beetstra", "  drag_law: beetstra\n  gas_velocity_at_particle: interpolated"));
+  EXPECT_EQ(c.transfer.gas_velocity, GasAtParticle::Interpolated);
+  EXPECT_EQ(parse_coupling_config("coupling.yaml", kValid).transfer.gas_velocity, GasAtParticle::Cell);
+  const auto p = problems_of(replaced(replaced(kValid, "transfer: per_particle", "transfer: averaged"), "  drag_law: beetstra",
+                                      "  drag_law: beetstra\n  gas_velocity_at_particle: interpolated"));
+  ASSERT_EQ(p.size(), 1u);
+  EXPECT_TRUE(contains(p, "coupling.gas_velocity_at_particle: 'interpolated' applies to the per-particle transfers")) << p[0];
+}
+
 TEST(Config, MissingFileIsNamed) {
   try {
     load_coupling_config("/nonexistent/coupling.yaml");

@@ -53,8 +53,16 @@ struct GasAtParticles {
   const double *viscous_stress_divergence = nullptr;  // div tau (Pa/m); nullptr = neglected
 };
 
+// Gas velocity seen by a particle in the per-particle methods ("v_g^i, the gas velocity at the
+// location of particle i", seed 000 eq. 29): the mapping-weighted mean of the cells the
+// particle is mapped to (with centroid mapping: its cell's value), or trilinear interpolation
+// between cell centres at the particle's centre (void_fraction.h interpolate()).
+enum class GasAtParticle { Cell, Interpolated };
+const std::vector<std::string> &gas_at_particle_names();
+
 struct TransferOptions {
   TransferMethod method = TransferMethod::Averaged;
+  GasAtParticle gas_velocity = GasAtParticle::Cell;
   drag::Law law = drag::Law::ErgunWenYu;
   drag::Gas gas{1.2, 1.8e-5};
 };

@@ -96,6 +96,12 @@ std::vector<double> cell_volumes(const CartesianGrid &grid, bool two_dimensional
 // the domain boundary: exact for fields linear in x, y, z. Axes with one cell are constant.
 void interpolate(const CartesianGrid &grid, const double *cell_field, int components,
                  const double *p, double *out);
+// The cells and weights interpolate() uses at point p (up to 8); returns how many.
+int interpolation_stencil(const CartesianGrid &grid, const double *p, int cells[8], double weights[8]);
+// Each particle's row extended by the cells of its interpolation stencil with weight 0, so a
+// rank that fetches the gas data of its weights' cells can interpolate at its particles;
+// every weighted sum is unchanged.
+void add_interpolation_stencils(const CartesianGrid &grid, const ParticleView &particles, CellWeights &weights);
 
 }  // namespace tfdem
 

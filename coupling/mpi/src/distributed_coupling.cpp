@@ -61,6 +61,7 @@ void DistributedCoupling::map(const ParticleView &particles) {
     failure = e.what();
   }
   throw_if_any_rank_failed(comm_, failure);
+  if (interpolates_gas_velocity()) add_interpolation_stencils(grid_, particles, weights_);
   halo_cells_ = compact_cells(weights_, scratch_);
   exchange_.set_halo(halo_cells_);
   accumulate_solid_sums(weights_, particles, halo_cells_.size(), halo_sums_);
@@ -91,8 +92,25 @@ std::vector<std::size_t> DistributedCoupling::particles_in_cell(int g) const {
   std::vector<std::size_t> found;
   for (std::size_t p = 0; p < weights_.particle_count(); ++p)
     for (std::size_t k = weights_.offsets[p]; k < weights_.offsets[p + 1]; ++k)
-      if (halo_cells_[weights_.cells[k]] == g) found.push_back(p);
+      if (halo_cells_[weights_.cells[k]] == g && weights_.weights[k] > 0.0) {
+        found.push_back(p);
+        break;
+      }
   return found;
+}
+
+bool DistributedCoupling::interpolates_gas_velocity() const {
+  return transfer_.gas_velocity == GasAtParticle::Interpolated && transfer_.method != TransferMethod::Averaged;
+}
+
+std::vector<double> DistributedCoupling::interpolated_velocity(const ParticleView &particles) {
+  grid_velocity_.resize(3 * static_cast<std::size_t>(grid_.cell_count()));
+  for (std::size_t h = 0; h < halo_cells_.size(); ++h)
+    for (int a = 0; a < 3; ++a) grid_velocity_[3 * halo_cells_[h] + a] = halo_.velocity[3 * h + a];
+  std::vector<double> out(3 * particles.count);
+  for (std::size_t i = 0; i < particles.count; ++i)
+    interpolate(grid_, grid_velocity_.data(), 3, particles.position + 3 * i, &out[3 * i]);
+  return out;
 }
 
 void DistributedCoupling::pack_owned_state(const double *gas_velocity, const double *pressure_gradient) {
@@ -155,7 +173,9 @@ void DistributedCoupling::forces(const ParticleView &particles, const double *ga
   unpack_halo_state();
   const CellSolidsState state{{halo, halo_.velocity.data(), halo_.gas_fraction.data(), halo_.volume.data()},
                               halo_.solid_volume.data(), halo_.coefficient.data(), halo_.solid_velocity.data()};
-  const std::vector<double> velocity_at = average_to_particles(weights_, halo_.velocity.data(), 3);
+  const std::vector<double> velocity_at = interpolates_gas_velocity()
+                                               ? interpolated_velocity(particles)
+                                               : average_to_particles(weights_, halo_.velocity.data(), 3);
   const std::vector<double> gas_fraction_at = average_to_particles(weights_, halo_.gas_fraction.data(), 1);
   const std::vector<double> gradient_at =
       pressure_gradient ? average_to_particles(weights_, halo_.gradient.data(), 3) : std::vector<double>();

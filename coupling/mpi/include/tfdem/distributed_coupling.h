@@ -75,6 +75,10 @@ class DistributedCoupling {
   void unpack_halo_state();
   // 2-D rule: zero the thin-direction (z) component of every particle's drag and force.
   void drop_thin_direction();
+  // Per-particle transfer with gas_velocity interpolated (the weights then carry each
+  // particle's interpolation stencil with weight 0, so the halo holds it).
+  bool interpolates_gas_velocity() const;
+  std::vector<double> interpolated_velocity(const ParticleView &particles);
 
   // Completed cell data of the halo cells, one field per array (storage reused every step).
   struct HaloCells {
@@ -91,6 +95,7 @@ class DistributedCoupling {
 
   CellWeights weights_;
   std::vector<int> scratch_, halo_cells_;
+  std::vector<double> grid_velocity_;  // halo gas velocities on the global grid (interpolation)
   std::vector<double> halo_sums_, owned_sums_, halo_state_, owned_state_;
   GasFraction gas_;
   std::vector<double> coefficient_, solid_velocity_;
