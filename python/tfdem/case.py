@@ -86,6 +86,12 @@ class Grid:
         return self.origin[axis] + self.spacing[axis] * self.counts[axis]
 
 
+def _expand_variables(text):
+    """Top-level ``name value;`` entries substituted for ``$name`` (blockMeshDict macros)."""
+    values = dict(re.findall(r"(?m)^\s*([A-Za-z]\w*)\s+([-+.\w]+)\s*;", text))
+    return re.sub(r"\$(\w+)", lambda m: values.get(m.group(1), m.group(0)), text)
+
+
 def _blocks(text):
     """[(vertex indices, (nx, ny, nz))] of a blockMeshDict's hex blocks."""
     return [([int(v) for v in m.group(1).split()], tuple(int(n) for n in m.group(2).split()))
@@ -151,7 +157,7 @@ class Case:
         """The uniform grid of system/blockMeshDict (spacing of the first block; all blocks
         must share it, as the coupler requires)."""
         path = self.file("system", "blockMeshDict")
-        text = _strip_comments(_read(path))
+        text = _expand_variables(_strip_comments(_read(path)))
         scale = float(re.search(r"(?m)^\s*(?:convertToMeters|scale)\s+([^;]+);", text).group(1)) \
             if re.search(r"(?m)^\s*(?:convertToMeters|scale)\s", text) else 1.0
         points = [tuple(scale * c for c in p) for p in _vertices(path, text)]
@@ -170,12 +176,16 @@ class Case:
         """Multiply every block's cell count along axis (0, 1, 2) by factor (refine the grid)."""
         path = self.file("system", "blockMeshDict")
 
+        text = _read(path)
+        if re.search(r"hex\s*\([\d\s]+\)\s*\(\s*\$", text):
+            raise CaseError(f"{path}: cell counts are macros; set them with set_dict_entries")
+
         def refine(m):
             counts = [int(n) for n in m.group(2).split()]
             counts[axis] = int(round(counts[axis] * factor))
             return f"hex ({m.group(1)}) ({' '.join(map(str, counts))})"
 
-        _write(path, re.sub(r"hex\s*\(([\d\s]+)\)\s*\(([\d\s]+)\)", refine, _read(path)))
+        _write(path, re.sub(r"hex\s*\(([\d\s]+)\)\s*\(([\d\s]+)\)", refine, text))
 
     # coupling.yaml ------------------------------------------------------------------------
     def coupling(self):

@@ -115,6 +115,13 @@ TEST(Analysis, ForceSumsAddOverParticleSets) {
   add_force_sums(first.view(), cells, f, 9.81, split);
   add_force_sums(second.view(), cells + 2, f + 6, 9.81, split);
   for (int k = 0; k < 6; ++k) EXPECT_NEAR(split[k], whole[k], 1e-15);
+  // sum over cells = sum over particles of f_i / (m_i g), each axis
+  const double weight = sphere_volume(0.003) * 2500.0 * 9.81;
+  for (int a = 0; a < 3; ++a) {
+    double over_particles = 0.0;
+    for (int i = 0; i < 4; ++i) over_particles += f[3 * i + a] / weight;
+    EXPECT_NEAR(whole[a] + whole[3 + a], over_particles, 1e-12 * std::abs(over_particles) + 1e-15);
+  }
 }
 
 // N_c = 1 2 2 1 0 (the chain above) split over two "ranks" as {1, 2} and {2, 1, 0}.
