@@ -1,5 +1,6 @@
 #include "dem_instance.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -109,6 +110,20 @@ bool DemInstance::write_restart(const std::string &path) {
     throw std::runtime_error("cannot rename the DEM restart file '" + partial + "' to '" + path + "'");
   MPI_Barrier(comm_);
   return true;
+}
+
+void DemInstance::remove_particles(const std::vector<int> &tags) {
+  if (tags.empty()) return;
+  constexpr std::size_t kIdsPerCommand = 500;
+  for (std::size_t first = 0; first < tags.size(); first += kIdsPerCommand) {
+    std::string ids;
+    for (std::size_t i = first; i < std::min(tags.size(), first + kIdsPerCommand); ++i)
+      ids += " " + std::to_string(tags[i]);
+    command("group tfdem_leaving id" + ids);
+  }
+  command("delete_atoms group tfdem_leaving compress no");
+  command("group tfdem_leaving delete");
+  set_up_ = false;  // atoms renumbered locally: neighbour lists and ghosts are rebuilt
 }
 
 void DemInstance::command(const std::string &line) { lmp_->input->one(line.c_str()); }

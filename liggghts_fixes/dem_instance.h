@@ -42,6 +42,9 @@ class DemInstance {
   // `path`, whole or not at all (written as path + ".tmp", then renamed). Collective. An
   // empty DEM without insertion (nothing to run, nothing to save) writes none: false.
   bool write_restart(const std::string &path);
+  // Remove the particles with these atom IDs from the DEM (the same list on every rank;
+  // collective). Their IDs are not reused; the next run sets up again.
+  void remove_particles(const std::vector<int> &tags);
   // True when the script has a particle insertion fix (style insert/*).
   bool inserts_particles() const;
   // Run one LIGGGHTS command (e.g. output set-up from the coupler).

@@ -8,6 +8,7 @@
 
 #include "dem_instance.h"
 #include "tfdem/distributed_coupling.h"
+#include "tfdemOutlets.H"
 #include "tfdemParticleAccounting.H"
 #include "tfdemStartupChecks.H"
 #include "tfdemStatistics.H"
@@ -105,6 +106,7 @@ Foam::TfdemCoupling::TfdemCoupling
     tfdemChecks::particles(config_, *dem_);
     tfdemChecks::gravity(g, *dem_);
     tfdemChecks::timeSteps(mesh.time(), config_, *dem_);
+    outlets_.reset(new TfdemOutlets(mesh, config_.outlets, configFile));
     accounting_.reset
     (
         new TfdemParticleAccounting(*dem_, checkpoint_.startTotals(), mesh.time().value())
@@ -184,7 +186,8 @@ void Foam::TfdemCoupling::evolve()
     Clock::time_point start = Clock::now();
     const bool recordContacts = statistics_->due(runTime);
     dem_->run(config_.coupling_interval, recordContacts);
-    accounting_->check(*dem_, runTime.value(), demLog() + ".screen");
+    const TfdemOutlets::Removed removed = outlets_->remove(*dem_);
+    accounting_->check(*dem_, runTime.value(), removed.tags, removed.mass, demLog() + ".screen");
     report_.addSeconds(TfdemRunReport::Part::dem, secondsSince(start));
 
     const tfdem::ParticleView view = particles();
@@ -311,6 +314,7 @@ void Foam::TfdemCoupling::write()
         return;
     }
     const Clock::time_point start = Clock::now();
+    outlets_->write(mesh_.time());
     checkpoint_.write(*dem_, accounting_->totals());
     report_.addSeconds(TfdemRunReport::Part::checkpoint, secondsSince(start));
 }

@@ -22,6 +22,7 @@ Description
 #include "pimpleControl.H"
 #include "fvOptions.H"
 #include "tfdemCoupling.H"
+#include "tfdemStartupChecks.H"
 
 #include <chrono>
 
@@ -99,7 +100,7 @@ int main(int argc, char *argv[])
         if (coupling.valid())
         {
             coupling->write();
-            coupling->progress();
+            coupling->progress(CoNum);
         }
 
         runTime.printExecutionTime(Info);

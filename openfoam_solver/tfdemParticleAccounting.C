@@ -62,10 +62,16 @@ void Foam::TfdemParticleAccounting::check
 (
     const tfdem::DemInstance& dem,
     scalar t,
+    const std::vector<int>& removedTags,
+    scalar removedMass,
     const fileName& demLog
 )
 {
     const ParticleTotals now = count(dem);
+    totals_.removedCount += label(removedTags.size());
+    totals_.removedMass += removedMass;
+    totals_.count -= label(removedTags.size());
+    totals_.mass -= removedMass;
     if (now.count >= totals_.count)
     {
         totals_.count = now.count;
@@ -75,7 +81,7 @@ void Foam::TfdemParticleAccounting::check
     }
     label lostHere = 0;
     List<string> lost(Pstream::nProcs());
-    lost[Pstream::myProcNo()] = describeLost(dem, lostHere);
+    lost[Pstream::myProcNo()] = describeLost(dem, removedTags, lostHere);
     Pstream::gatherList(lost);
     std::string named;
     for (const string& text : lost)
@@ -85,19 +91,22 @@ void Foam::TfdemParticleAccounting::check
     FatalErrorInFunction
         << totals_.count - now.count << " of " << totals_.count
         << " particles were lost in the DEM between t = " << lastTime_ << " and "
-        << t << " s (" << totals_.mass - now.mass << " kg; no outlet removes particles)."
+        << t << " s (" << totals_.mass - now.mass << " kg), not through an outlet."
         << nl << "Lost particles (at most " << namedLostParticles << " per rank), at their"
         << " last position before:" << nl << named.c_str()
         << "LIGGGHTS drops particles that leave its domain. Likely causes: a contact that"
         << " blew up (DEM step too large for k_n, or the damping; see the contact-time"
-        << " lines above), a particle pushed through a wall, or a domain boundary that is"
-        << " open. DEM log: " << demLog << exit(FatalError);
+        << " lines above), a particle pushed through a wall, or an open side of the DEM's"
+        << " box. Particles meant to leave through a gas outlet need it in coupling.yaml"
+        << " dem.outlets and a DEM box that reaches beyond it (LIGGGHTS boundary m)."
+        << " DEM log: " << demLog << exit(FatalError);
 }
 
 
 std::string Foam::TfdemParticleAccounting::describeLost
 (
     const tfdem::DemInstance& dem,
+    const std::vector<int>& removedTags,
     label& lost
 ) const
 {
@@ -115,6 +124,7 @@ std::string Foam::TfdemParticleAccounting::describeLost
         dem.tags(), mine, MPI_INT, present.data(), counts.data(), offsets.data(),
         MPI_INT, MPI_COMM_WORLD
     );
+    present.insert(present.end(), removedTags.begin(), removedTags.end());
     std::sort(present.begin(), present.end());
     std::ostringstream out;
     lost = 0;

@@ -68,6 +68,25 @@ void Foam::TfdemRunReport::progress()
 }
 
 
+void Foam::TfdemRunReport::courant(scalar courantNumber)
+{
+    largestCourant_ = max(largestCourant_, courantNumber);
+    if (!runTime_.writeTime())
+    {
+        return;
+    }
+    Info<< "TFDEM gas Courant number: largest " << largestCourant_ << " since the last write"
+        << endl;
+    if (largestCourant_ > 1)
+    {
+        Info<< "TFDEM warning: the gas Courant number reached " << largestCourant_
+            << " (> 1): the gas step " << runTime_.deltaTValue() << " s is too long for the"
+            << " flow; shorten it (fewer dem.coupling_interval steps, deltaT to match)" << endl;
+    }
+    largestCourant_ = 0;
+}
+
+
 void Foam::TfdemRunReport::report
 (
     const tfdem::CouplingTotals& last,

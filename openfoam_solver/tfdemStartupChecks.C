@@ -1,4 +1,5 @@
 #include "tfdemStartupChecks.H"
+#include "emptyFvPatchFields.H"
 
 #include <mpi.h>
 
@@ -158,6 +159,47 @@ void Foam::tfdemChecks::gravity
             << "gravity disagrees: constant/g is " << g.value()
             << " m/s^2, the DEM script's fix gravity gives " << gDem
             << " m/s^2. Make them equal." << exit(FatalError);
+    }
+}
+
+
+void Foam::tfdemChecks::inletVoidFraction
+(
+    const volVectorField& U,
+    const volScalarField& voidFraction,
+    bool voidFractionRead
+)
+{
+    const fvMesh& mesh = U.mesh();
+    forAll(U.boundaryField(), patchi)
+    {
+        const fvPatchVectorField& Ub = U.boundaryField()[patchi];
+        if (!Ub.fixesValue() || isA<emptyFvPatchVectorField>(Ub))
+        {
+            continue;
+        }
+        const scalar inflow = -gSum(Ub & mesh.Sf().boundaryField()[patchi]);
+        if (inflow <= 0)
+        {
+            continue;
+        }
+        const word& name = mesh.boundary()[patchi].name();
+        if (!voidFractionRead)
+        {
+            FatalErrorInFunction
+                << "gas flows in through patch '" << name << "' (fixed U) but the case has no "
+                << U.time().timeName()/"voidFraction" << ": the inlet velocity would count"
+                << " as interstitial (times the gas fraction of the cells behind it). Add "
+                << "0/voidFraction with " << name << " { type fixedValue; value uniform 1; }"
+                << " for a superficial inlet velocity (or zeroGradient for an interstitial"
+                << " one); see the README, Inflow" << exit(FatalError);
+        }
+        const fvPatchScalarField& eb = voidFraction.boundaryField()[patchi];
+        const bool superficial = eb.fixesValue() && gMin(eb) == 1 && gMax(eb) == 1;
+        Info<< "TFDEM coupling: inlet '" << name << "': U is "
+            << (superficial ? "superficial (voidFraction fixedValue 1)"
+                            : "interstitial (voidFraction not fixed at 1)")
+            << ", inflow " << inflow << " m^3/s" << endl;
     }
 }
 

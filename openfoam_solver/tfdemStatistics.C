@@ -125,8 +125,9 @@ void Foam::TfdemStatistics::writeSeriesRow
     if (series_)
     {
         *series_
-            << setprecision(10) << t << ' ' << label(sums[0]) << ' ' << sums[4] << ' '
-            << (sums[0] > 0 ? sums[5]/sums[0] : 0) << ' ' << counts.bulk_coordination()
+            << setprecision(10) << t << ' ' << label(sums[0]) << ' ' << setprecision(17)
+            << sums[4] << ' ' << setprecision(10) << (sums[0] > 0 ? sums[5]/sums[0] : 0) << ' '
+            << counts.bulk_coordination()
             << ' ' << counts.multicontact() << endl;
     }
 }

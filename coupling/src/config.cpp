@@ -147,6 +147,18 @@ std::string ConfigSection::text(const std::string &key, const std::string &fallb
   return value->Scalar();
 }
 
+std::vector<std::string> ConfigSection::text_list(const std::string &key) {
+  const std::optional<YAML::Node> value = child(key, false);
+  if (!value) return {};
+  if (value->IsScalar()) return {value->Scalar()};
+  std::vector<std::string> out;
+  if (value->IsSequence())
+    for (const auto &item : *value)
+      if (item.IsScalar()) out.push_back(item.Scalar());
+  if (!value->IsSequence() || out.size() != value->size()) problem(key, "must be a name or a list of names");
+  return out;
+}
+
 std::string ConfigSection::choice(const std::string &key, const std::string &fallback,
                                   const std::vector<std::string> &choices) {
   const std::string v = text(key, fallback);
@@ -217,6 +229,7 @@ CouplingConfig parse_coupling_config(const std::string &file, const std::string 
   ConfigSection dem = root.section("dem", true);
   c.dem_script = dem.text("script", "", true);
   c.coupling_interval = dem.integer("coupling_interval", 1, 1, 1000000);
+  c.outlets = dem.text_list("outlets");
   dem.reject_unknown_keys();
   ConfigSection coupling = root.section("coupling");
   c.transfer.method = transfer_method_from_name(coupling.choice("transfer", "averaged", transfer_method_names()));
@@ -256,6 +269,11 @@ std::string describe(const CouplingConfig &c) {
     << "gas:\n  density: " << c.gas.density << "\n  viscosity: " << c.gas.viscosity << "\n"
     << "particles:\n  diameter: " << c.particle_diameter << "\n  density: " << c.particle_density << "\n"
     << "dem:\n  script: " << c.dem_script << "\n  coupling_interval: " << c.coupling_interval << "\n"
+    << "  outlets: [" << [&c] {
+         std::string list;
+         for (const auto &o : c.outlets) list += (list.empty() ? "" : ", ") + o;
+         return list;
+       }() << "]\n"
     << "coupling:\n  transfer: " << transfer_method_names()[static_cast<int>(c.transfer.method)] << "\n"
     << "  drag_law: " << drag::law_name(c.transfer.law) << "\n"
     << "  gas_velocity_at_particle: " << gas_at_particle_names()[static_cast<int>(c.transfer.gas_velocity)] << "\n"

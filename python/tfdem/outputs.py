@@ -13,8 +13,15 @@ class OutputError(Exception):
     """An expected output is missing or malformed; the message names the file."""
 
 
+def _number(token):
+    try:
+        return float(token)
+    except ValueError:
+        return token
+
+
 def _numbers(line):
-    """Floats of a probes row; vectors '(x y z)' become tuples."""
+    """Values of a row: floats, vectors '(x y z)' as tuples, names as text."""
     tokens = line.replace("(", " ( ").replace(")", " ) ").split()
     values, i = [], 0
     while i < len(tokens):
@@ -23,7 +30,7 @@ def _numbers(line):
             values.append(tuple(float(t) for t in tokens[i + 1:end]))
             i = end + 1
         else:
-            values.append(float(tokens[i]))
+            values.append(_number(tokens[i]))
             i += 1
     return values
 

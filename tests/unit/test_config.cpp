@@ -152,6 +152,16 @@ TEST(Config, GasVelocityAtParticle) {
   EXPECT_TRUE(contains(p, "coupling.gas_velocity_at_particle: 'interpolated' applies to the per-particle transfers")) << p[0];
 }
 
+TEST(Config, Outlets) {
+  EXPECT_TRUE(parse_coupling_config("coupling.yaml", kValid).outlets.empty());
+  const CouplingConfig c =
+      parse_coupling_config("coupling.yaml", replaced(kValid, "  coupling_interval: 50\n", "  coupling_interval: 50\n  outlets: [top, side]\n"));
+  EXPECT_EQ(c.outlets, (std::vector<std::string>{"top", "side"}));
+  const auto p = problems_of(replaced(kValid, "  coupling_interval: 50\n", "  coupling_interval: 50\n  outlets: {top: 1}\n"));
+  ASSERT_EQ(p.size(), 1u);
+  EXPECT_TRUE(contains(p, "dem.outlets: must be a name or a list of names")) << p[0];
+}
+
 TEST(Config, MissingFileIsNamed) {
   try {
     load_coupling_config("/nonexistent/coupling.yaml");

@@ -48,6 +48,8 @@ class ConfigSection {
   long integer(const std::string &key, long fallback, long min, long max, bool required = false);
   bool boolean(const std::string &key, bool fallback);
   std::string text(const std::string &key, const std::string &fallback, bool required = false);
+  // A list of texts (a YAML sequence, or one text); empty when absent.
+  std::vector<std::string> text_list(const std::string &key);
   // Text that must be one of `choices`.
   std::string choice(const std::string &key, const std::string &fallback, const std::vector<std::string> &choices);
   // Report keys present but never read, with the nearest read key. Call after all reads.
@@ -99,6 +101,7 @@ struct CouplingConfig {
   double particle_density = 0.0;   // rho_p (kg/m^3)
   std::string dem_script;         // LIGGGHTS input, relative to the case directory
   long coupling_interval = 1;     // DEM steps per gas step
+  std::vector<std::string> outlets;  // gas patches through which particles leave the DEM
   TransferOptions transfer;       // method, drag law, gas
   VoidFractionOptions void_fraction;
   bool pressure_gradient_force = true;  // -V_p grad p of eq. 28

@@ -1,0 +1,440 @@
+"""The study's report: seed 000's figures from the runs' outputs, a CSV per time series, and
+the table of every number beside the paper's (report/README.md, report/numbers.json).
+
+Every time average comes with its standard error from batch means (study.yaml `batch`);
+averages cover seed 000's window (5-10 s) and 5-20 s. The maps are time averages of the
+fields the runs sampled at every cell centre (study.yaml `field_interval`).
+"""
+import csv
+import json
+import math
+import os
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy  # noqa: E402
+
+from tfdem.outputs import joined_series, particle_statistics, vtk_particles  # noqa: E402
+from tfdem.stats import batch_means, dominant_frequency, window  # noqa: E402
+
+# Seed 000's results (text of the paper; its figures give no more digits)
+PAPER = {
+    "bulk_coordination_jet": "~1.2 (Fig. 5)",
+    "bulk_coordination_uniform": "~0.5 (Fig. 5)",
+    "multicontact_jet": "> 0.6 most of the time (Fig. 11)",
+    "multicontact_uniform": "~0.3 (Fig. 11)",
+    "mean_height_m1": 8.9,   # cm, 5-10 s, averaged-velocity method (method 1)
+    "mean_height_m2": 9.1,   # cm, per-particle method (method 2)
+    "mean_height_tfm": 9.16,  # cm, TFM
+    "mean_height_experiment": 11.4,  # cm, Goldschmidt et al.
+    "force_ratio_jet": "2-10 in most of the bed, up to 100 in the corners beside the jet (Fig. 7)",
+    "force_ratio_uniform": "never above 15 (Fig. 12)",
+    "cost_tfdem_jet": 6780.0,  # s for 20 s, one 2.0 GHz Opteron 270 core
+    "cost_tfm_jet": 5350.0,
+}
+
+
+class RunData:
+    """What a finished run wrote, as arrays."""
+
+    def __init__(self, run):
+        self.run, self.name, self.tfm = run, run.name, run.tfm
+        self.grid = run.case.grid()
+        nx, ny = self.grid.counts[0], self.grid.counts[1]
+        self.shape = (ny, nx)
+        self.y = numpy.array([c[1] for c in self.grid.centres()]).reshape(self.shape)
+        path = run.case.path
+        first = "alpha.particles" if self.tfm else "voidFraction"
+        rows = joined_series(path, "studyFields", first)
+        self.field_t = numpy.array([r[0] for r in rows])
+        values = numpy.array([r[1] for r in rows])
+        self.solids = values if self.tfm else 1.0 - values
+        if not self.tfm:
+            self.contact = numpy.array([r[1] for r in joined_series(path, "studyFields", "contactForceByWeight")])
+            self.drag = numpy.array([r[1] for r in joined_series(path, "studyFields", "dragForceByWeight")])
+            self.particles = particle_statistics(path)
+        p = joined_series(path, "studyPressure", "p")
+        self.p_t = numpy.array([r[0] for r in p])
+        rows_p = numpy.array([r[1] for r in p])
+        self.dp = rows_p[:, :nx].mean(axis=1) - rows_p[:, nx:].mean(axis=1)
+        self.wall = run.wall_seconds()
+
+    def mean_height(self):
+        """(t, mean particle height in m): the particles' (TF-DEM) or the solids' centroid
+        height sum(y alpha_s) / sum(alpha_s) on the uniform cells (TFM, as Ref. 26 of seed 000)."""
+        if not self.tfm:
+            return numpy.array(self.particles["t"]), numpy.array(self.particles["mean_height"])
+        weights = self.solids
+        return self.field_t, (weights * self.y.ravel()).sum(axis=1) / weights.sum(axis=1)
+
+    def field_average(self, values, start, end):
+        pick = (self.field_t >= start - 1e-9) & (self.field_t <= end + 1e-9)
+        if not pick.any():
+            raise ValueError(f"{self.name}: no field samples in [{start}, {end}] s")
+        return values[pick].mean(axis=0).reshape(self.shape)
+
+    def field_at(self, values, t):
+        return values[int(numpy.argmin(numpy.abs(self.field_t - t)))].reshape(self.shape)
+
+
+def averaged(t, y, start, end, batch):
+    m, err, n = batch_means(list(t), list(y), start, end, batch)
+    return {"mean": m, "error": err, "batches": n, "std": float(numpy.std(window(list(t), list(y), start, end)))}
+
+
+def fmt(stat, scale=1.0, digits=3):
+    if stat is None:
+        return "-"
+    err = stat["error"] * scale
+    text = f"{stat['mean'] * scale:.{digits}g}"
+    return text + (f" ± {err:.2g}" if err == err else "")
+
+
+class Report:
+    def __init__(self, study, runs, end_time, out):
+        self.study, self.end_time, self.out = study, end_time, out
+        self.windows = [(a * end_time, b * end_time) for a, b in study["windows"]]
+        self.batch = study["batch"] * end_time / study["end_time"]
+        self.snapshot = study["snapshot_time"] * end_time
+        self.data = {}
+        self.missing = []
+        for r in runs:
+            if r.done():
+                self.data[r.name] = RunData(r)
+            else:
+                self.missing.append(r.name)
+        self.numbers = {"windows": self.windows, "batch": self.batch, "snapshot": self.snapshot, "runs": {}}
+        os.makedirs(os.path.join(out, "csv"), exist_ok=True)
+
+    def has(self, *names):
+        return all(n in self.data for n in names)
+
+    # Numbers -----------------------------------------------------------------------------
+    def run_numbers(self, d):
+        out = {"wall_seconds": d.wall}
+        for (start, end) in self.windows:
+            key = f"{start:g}-{end:g}"
+            w = {"dp20": averaged(d.p_t, d.dp, start, end, self.batch)}
+            t, h = d.mean_height()
+            w["mean_height"] = averaged(t, h, start, end, self.batch)
+            if not d.tfm:
+                p = d.particles
+                w["bulk_coordination"] = averaged(p["t"], p["bulk_coordination"], start, end, self.batch)
+                w["multicontact"] = averaged(p["t"], p["multicontact"], start, end, self.batch)
+                w["force_ratio"] = self.ratio_numbers(d, start, end)
+            pick = (d.p_t >= start - 1e-9) & (d.p_t <= end + 1e-9)
+            w["dp20_frequency"] = dominant_frequency(d.p_t[pick], d.dp[pick])
+            out[key] = w
+        return out
+
+    def ratio_numbers(self, d, start, end):
+        """Contact/drag ratio of the time-averaged maps over the bed's cells (time-averaged
+        solids fraction above 0.1): share of cells between 2 and 10, median, largest, and the
+        largest in the bottom corners (x < 4 cm or x > W - 4 cm, y < 6 cm)."""
+        contact, drag = d.field_average(d.contact, start, end), d.field_average(d.drag, start, end)
+        solids = d.field_average(d.solids, start, end)
+        bed = (solids > 0.1) & (drag > 0)
+        ratio = numpy.where(drag > 0, contact / numpy.where(drag > 0, drag, 1), numpy.nan)
+        x = numpy.array([c[0] for c in d.grid.centres()]).reshape(d.shape)
+        width = d.grid.upper(0) - d.grid.origin[0]
+        corner = bed & (d.y < 0.06) & ((x < 0.04) | (x > width - 0.04))
+        values = ratio[bed]
+        return {"share_2_to_10": float(((values >= 2) & (values <= 10)).mean()) if values.size else float("nan"),
+                "median": float(numpy.median(values)) if values.size else float("nan"),
+                "largest": float(values.max()) if values.size else float("nan"),
+                "largest_in_corners": float(ratio[corner].max()) if corner.any() else float("nan")}
+
+    def grid_l1(self, coarse, fine, start, end):
+        """Mean |difference| of the time-averaged solids fraction of two grids over the
+        bottom 45 cm, the fine map averaged onto the coarse cells."""
+        a = self.data[coarse].field_average(self.data[coarse].solids, start, end)
+        b = self.data[fine].field_average(self.data[fine].solids, start, end)
+        factor = b.shape[0] // a.shape[0]
+        b = b.reshape(a.shape[0], factor, a.shape[1]).mean(axis=1)
+        rows = self.data[coarse].y[:, 0] < 0.45
+        return float(numpy.abs(a[rows] - b[rows]).mean())
+
+    # CSV -----------------------------------------------------------------------------------
+    def write_csv(self, d):
+        path = os.path.join(self.out, "csv", f"{d.name}_pressure.csv")
+        with open(path, "w", newline="") as f:
+            w = csv.writer(f)
+            w.writerow(["t (s)", "dp 20 cm (Pa): p(bottom row) - p(row 20 cm above), row means"])
+            w.writerows(zip(d.p_t, d.dp))
+        t, h = d.mean_height()
+        path = os.path.join(self.out, "csv", f"{d.name}_particles.csv")
+        with open(path, "w", newline="") as f:
+            w = csv.writer(f)
+            if d.tfm:
+                w.writerow(["t (s)", "solids mean height (m)"])
+                w.writerows(zip(t, h))
+            else:
+                p = d.particles
+                w.writerow(["t (s)", "mean particle height (m)", "bulk coordination number", "multicontact ratio",
+                            "particles"])
+                w.writerows(zip(p["t"], p["mean_height"], p["bulk_coordination"], p["multicontact"], p["particles"]))
+
+    # Figures -------------------------------------------------------------------------------
+    def save(self, fig, name):
+        fig.tight_layout()
+        fig.savefig(os.path.join(self.out, name), dpi=110)
+        plt.close(fig)
+        self.figures.append(name)
+
+    def map_axes(self, ax, d, values, title, vmin=0, vmax=0.65, cmap="viridis", top=0.45):
+        g = d.grid
+        extent = (g.origin[0], g.upper(0), g.origin[1], g.upper(1))
+        image = ax.imshow(values, origin="lower", extent=extent, vmin=vmin, vmax=vmax, cmap=cmap,
+                          interpolation="nearest", aspect="equal")
+        ax.set_ylim(g.origin[1], min(top, g.upper(1)))
+        ax.set_title(title, fontsize=8)
+        ax.set_xticks([0, 0.05, 0.1, 0.15])
+        ax.tick_params(labelsize=7)
+        return image
+
+    def fig3(self):
+        names = [n for n in ("jet_m1", "jet_m2", "jet_tfm") if n in self.data]
+        if not names:
+            return
+        start, end = self.windows[0]
+        fig, ax = plt.subplots(figsize=(8, 3.5))
+        for n in names:
+            d = self.data[n]
+            s = averaged(d.p_t, d.dp, start, end, self.batch)
+            ax.plot(d.p_t, d.dp, lw=0.6, label=f"{n}: {s['mean']:.0f} ± {s['std']:.0f} Pa (mean ± std, {start:g}-{end:g} s)")
+        ax.set_xlabel("t (s)")
+        ax.set_ylabel("Δp at 20 cm (Pa)")
+        ax.legend(fontsize=7)
+        ax.set_title("Fig. 3: pressure drop between the bottom cells and 20 cm above, central-jet bed", fontsize=9)
+        self.save(fig, "fig3_jet_pressure_drop.png")
+
+    def fig4(self):
+        pairs = [(c, f) for c, f in (("jet_m1", "jet_fine_m1"), ("jet_cube_m1", "jet_fine_cube_m1")) if self.has(c, f)]
+        if not pairs:
+            return
+        start, end = self.windows[0]
+        fig, axes = plt.subplots(1, 2 * len(pairs), figsize=(3 * len(pairs) * 2, 5))
+        axes = numpy.atleast_1d(axes)
+        for k, (c, f) in enumerate(pairs):
+            l1 = self.grid_l1(c, f, start, end)
+            for j, n in enumerate((c, f)):
+                d = self.data[n]
+                image = self.map_axes(axes[2 * k + j], d, d.field_average(d.solids, start, end),
+                                      f"{n}\n(L1 coarse-fine {l1:.3f})")
+        fig.colorbar(image, ax=list(axes), shrink=0.8, label=f"solids fraction, {start:g}-{end:g} s")
+        fig.suptitle("Fig. 4: time-averaged solids fraction, coarse (1 x 2 cm) and fine (1 x 1 cm) grids", fontsize=9)
+        fig.savefig(os.path.join(self.out, "fig4_jet_grids.png"), dpi=110)
+        plt.close(fig)
+        self.figures.append("fig4_jet_grids.png")
+
+    def series_figure(self, key, ylabel, title, filename, paper_lines):
+        names = [n for n in ("jet_m1", "jet_m2", "uniform_m1", "uniform_m2") if n in self.data]
+        if not names:
+            return
+        fig, ax = plt.subplots(figsize=(8, 3.5))
+        for n in names:
+            p = self.data[n].particles
+            ax.plot(p["t"], p[key], lw=0.6, label=n)
+        for value, label in paper_lines:
+            ax.axhline(value, ls="--", lw=0.8, color="k")
+            ax.text(0.01, value, label, fontsize=7, va="bottom", transform=ax.get_yaxis_transform())
+        ax.set_xlabel("t (s)")
+        ax.set_ylabel(ylabel)
+        ax.legend(fontsize=7)
+        ax.set_title(title, fontsize=9)
+        self.save(fig, filename)
+
+    def particle_snapshot(self, name, filename, title):
+        if name not in self.data:
+            return
+        d = self.data[name]
+        folder = d.run.case.file("VTK")
+        files = sorted(os.listdir(folder), key=lambda f: abs(float(f[len("particles_"):-len(".vtk")]) - self.snapshot))
+        p = vtk_particles(os.path.join(folder, files[0]))
+        t = float(files[0][len("particles_"):-len(".vtk")])
+        x = numpy.array(p["position"])
+        v = numpy.array(p["velocity"])
+        nc = numpy.array(p["coordination"])
+        fig, ax = plt.subplots(figsize=(4, 6))
+        sc = ax.scatter(x[:, 0], x[:, 1], c=nc, s=4, cmap="jet", vmin=0, vmax=6)
+        ax.quiver(x[:, 0], x[:, 1], v[:, 0], v[:, 1], scale=40, width=0.002)
+        ax.set_xlim(0, d.grid.upper(0))
+        ax.set_ylim(0, 0.45)
+        ax.set_aspect("equal")
+        fig.colorbar(sc, ax=ax, label="N_c")
+        ax.set_title(f"{title}\n{name}, t = {t:g} s", fontsize=9)
+        self.save(fig, filename)
+
+    def force_figure(self, name, filename, title):
+        if name not in self.data:
+            return
+        d = self.data[name]
+        start, end = self.windows[0]
+        fig, axes = plt.subplots(2, 3, figsize=(8, 8))
+        rows = (("at %g s" % self.snapshot, lambda v: d.field_at(v, self.snapshot)),
+                ("averaged %g-%g s" % (start, end), lambda v: d.field_average(v, start, end)))
+        for i, (label, pick) in enumerate(rows):
+            contact, drag = pick(d.contact), pick(d.drag)
+            ratio = numpy.where(drag > 0, contact / numpy.where(drag > 0, drag, 1), -1)
+            for j, (values, what, vmax) in enumerate(((contact, "contact |Σ f_c|/(m g)", None),
+                                                      (drag, "drag |Σ f_d|/(m g)", None),
+                                                      (ratio, "contact / drag (-1: no drag)", 20))):
+                top = vmax or max(float(numpy.percentile(values, 99)), 1e-9)
+                image = self.map_axes(axes[i, j], d, values, f"{what}\n{label}", vmin=-1 if vmax else 0,
+                                      vmax=top, cmap="jet")
+                fig.colorbar(image, ax=axes[i, j], shrink=0.7)
+        fig.suptitle(title, fontsize=9)
+        self.save(fig, filename)
+
+    def fig8(self):
+        if not self.has("jet_m1", "jet_tfm"):
+            return
+        start, end = self.windows[0]
+        fig, axes = plt.subplots(1, 4, figsize=(10, 5))
+        for k, (label, pick) in enumerate((("at %g s" % self.snapshot, lambda d: d.field_at(d.solids, self.snapshot)),
+                                           ("%g-%g s" % (start, end), lambda d: d.field_average(d.solids, start, end)))):
+            for j, n in enumerate(("jet_m1", "jet_tfm")):
+                d = self.data[n]
+                image = self.map_axes(axes[2 * k + j], d, pick(d), f"{n}, {label}")
+        fig.colorbar(image, ax=list(axes), shrink=0.8, label="solids fraction")
+        fig.suptitle("Fig. 8: solids fraction, central-jet bed, TF-DEM (method 1) and TFM", fontsize=9)
+        fig.savefig(os.path.join(self.out, "fig8_jet_dem_vs_tfm.png"), dpi=110)
+        plt.close(fig)
+        self.figures.append("fig8_jet_dem_vs_tfm.png")
+
+    def fig9(self):
+        names = [n for n in ("uniform_m1", "uniform_m2", "uniform_m2_interpolated", "uniform_tfm") if n in self.data]
+        if not names:
+            return
+        fig, ax = plt.subplots(figsize=(8, 3.5))
+        for n in names:
+            t, h = self.data[n].mean_height()
+            ax.plot(t, 100 * h, lw=0.6, label=n)
+        for key, label in (("mean_height_m1", "paper, method 1"), ("mean_height_m2", "paper, method 2"),
+                           ("mean_height_tfm", "paper, TFM"), ("mean_height_experiment", "experiment")):
+            ax.axhline(PAPER[key], ls="--", lw=0.7, color="k")
+            ax.text(1.0, PAPER[key], f" {label} {PAPER[key]} cm", fontsize=6, va="center",
+                    transform=ax.get_yaxis_transform())
+        ax.set_xlabel("t (s)")
+        ax.set_ylabel("mean particle height (cm)")
+        ax.legend(fontsize=7)
+        ax.set_title("Fig. 9: mean particle height, uniform-inflow bed", fontsize=9)
+        self.save(fig, "fig9_uniform_mean_height.png")
+
+    def fig13(self):
+        names = [n for n in ("uniform_m1", "uniform_m2", "uniform_m2_interpolated", "uniform_tfm") if n in self.data]
+        if len(names) < 2:
+            return
+        start, end = self.windows[0]
+        fig, axes = plt.subplots(1, len(names), figsize=(2.6 * len(names), 5))
+        for ax, n in zip(axes, names):
+            d = self.data[n]
+            image = self.map_axes(ax, d, d.field_average(d.solids, start, end), n, top=0.3)
+        fig.colorbar(image, ax=list(axes), shrink=0.8, label=f"solids fraction, {start:g}-{end:g} s")
+        fig.suptitle("Fig. 13: time-averaged solids fraction, uniform-inflow bed, method 1 and method 2", fontsize=9)
+        fig.savefig(os.path.join(self.out, "fig13_uniform_methods.png"), dpi=110)
+        plt.close(fig)
+        self.figures.append("fig13_uniform_methods.png")
+
+    # Assembly ------------------------------------------------------------------------------
+    def build(self):
+        self.figures = []
+        for name, d in self.data.items():
+            self.numbers["runs"][name] = self.run_numbers(d)
+            self.write_csv(d)
+        start, end = self.windows[0]
+        for c, f in (("jet_m1", "jet_fine_m1"), ("jet_m2", "jet_fine_m2"), ("jet_cube_m1", "jet_fine_cube_m1"),
+                     ("jet_tfm", "jet_fine_tfm")):
+            if self.has(c, f):
+                self.numbers.setdefault("grid_l1", {})[f"{c} vs {f}"] = {
+                    f"{a:g}-{b:g}": self.grid_l1(c, f, a, b) for a, b in self.windows}
+        self.fig3()
+        self.fig4()
+        self.series_figure("bulk_coordination", "bulk coordination number",
+                           "Fig. 5: bulk coordination number (mean N_c)", "fig5_coordination.png",
+                           [(1.2, "paper: jet ~1.2"), (0.5, "paper: uniform ~0.5")])
+        self.particle_snapshot("jet_m1", "fig6_jet_particles.png", "Fig. 6: particles, velocities and N_c")
+        self.force_figure("jet_m1", "fig7_jet_forces.png", "Fig. 7: contact and drag force per cell, central-jet bed")
+        self.fig8()
+        self.fig9()
+        self.particle_snapshot("uniform_m1", "fig10_uniform_particles.png", "Fig. 10: particles, velocities and N_c")
+        self.series_figure("multicontact", "multicontact ratio", "Fig. 11: particles with N_c > 1 over those with N_c >= 1",
+                           "fig11_multicontact.png", [(0.6, "paper: jet > 0.6"), (0.3, "paper: uniform ~0.3")])
+        self.force_figure("uniform_m1", "fig12_uniform_forces.png",
+                          "Fig. 12: contact and drag force per cell, uniform-inflow bed")
+        self.fig13()
+        self.numbers["figures"] = self.figures
+        self.numbers["missing_runs"] = self.missing
+        with open(os.path.join(self.out, "numbers.json"), "w") as f:
+            json.dump(self.numbers, f, indent=1, default=float)
+        self.write_readme()
+
+    def write_readme(self):
+        w0 = f"{self.windows[0][0]:g}-{self.windows[0][1]:g}"
+        w1 = f"{self.windows[1][0]:g}-{self.windows[1][1]:g}"
+        runs = self.numbers["runs"]
+
+        def stat(run, key, scale=1.0):
+            if run not in runs:
+                return "-", "-"
+            return fmt(runs[run][w0].get(key), scale), fmt(runs[run][w1].get(key), scale)
+
+        lines = [f"# Seed 000 study: report ({self.end_time:g} s runs)", "",
+                 f"Averages over {w0} s (seed 000's window) and {w1} s, ± the standard error of batch means "
+                 f"({self.batch:g} s batches). Made by `study.py report` from `runs/`.", ""]
+        if self.missing:
+            lines += [f"Runs not finished (left out): {', '.join(self.missing)}", ""]
+        lines += ["| quantity | run | paper | ours " + w0 + " s | ours " + w1 + " s |", "|---|---|---|---|---|"]
+        rows = [("Δp at 20 cm (Pa), jet", r, "figure only (Fig. 3)", "dp20", 1.0) for r in ("jet_m1", "jet_m2", "jet_fine_m1", "jet_tfm")]
+        rows += [("bulk coordination number, jet", r, PAPER["bulk_coordination_jet"], "bulk_coordination", 1.0)
+                 for r in ("jet_m1", "jet_m2")]
+        rows += [("bulk coordination number, uniform", r, PAPER["bulk_coordination_uniform"], "bulk_coordination", 1.0)
+                 for r in ("uniform_m1", "uniform_m2")]
+        rows += [("multicontact ratio, jet", r, PAPER["multicontact_jet"], "multicontact", 1.0) for r in ("jet_m1", "jet_m2")]
+        rows += [("multicontact ratio, uniform", r, PAPER["multicontact_uniform"], "multicontact", 1.0)
+                 for r in ("uniform_m1", "uniform_m2")]
+        for r, key in (("uniform_m1", "mean_height_m1"), ("uniform_m2", "mean_height_m2"),
+                       ("uniform_m2_interpolated", "mean_height_m2"), ("uniform_tfm", "mean_height_tfm")):
+            rows.append(("mean particle height (cm), uniform", r,
+                         f"{PAPER[key]} (experiment {PAPER['mean_height_experiment']})", "mean_height", 100.0))
+        for label, run, paper, key, scale in rows:
+            a, b = stat(run, key, scale)
+            lines.append(f"| {label} | {run} | {paper} | {a} | {b} |")
+        lines += ["", "Contact / drag force ratio of the time-averaged maps over bed cells (solids fraction > 0.1):", "",
+                  "| run | paper | share of cells 2-10 | median | largest | largest in the bottom corners |",
+                  "|---|---|---|---|---|---|"]
+        for run, paper in (("jet_m1", PAPER["force_ratio_jet"]), ("uniform_m1", PAPER["force_ratio_uniform"])):
+            if run in runs:
+                r = runs[run][w0]["force_ratio"]
+                lines.append(f"| {run} | {paper} | {r['share_2_to_10']:.2f} | {r['median']:.3g} | {r['largest']:.3g} | "
+                             f"{r['largest_in_corners']:.3g} |")
+        if "grid_l1" in self.numbers:
+            lines += ["", "Grid dependence (Fig. 4): mean |coarse - fine| of the time-averaged solids fraction, "
+                          "bottom 45 cm:", "", f"| pair | {w0} s | {w1} s |", "|---|---|---|"]
+            for pair, values in self.numbers["grid_l1"].items():
+                lines.append(f"| {pair} | {values[w0]:.4f} | {values[w1]:.4f} |")
+        lines += ["", "Cost (wall time on this machine, two runs side by side on 2 cores):", "",
+                  "| run | wall time | per simulated second |", "|---|---|---|"]
+        for name, values in runs.items():
+            lines.append(f"| {name} | {values['wall_seconds']:.0f} s | {values['wall_seconds'] / self.end_time:.1f} s |")
+        lines += [f"", f"Paper (one 2.0 GHz Opteron 270 core, 20 s of the jet bed): TF-DEM "
+                       f"{PAPER['cost_tfdem_jet']:.0f} s, TFM {PAPER['cost_tfm_jet']:.0f} s.", "", "## Figures", ""]
+        lines += [f"![{f}]({f})" for f in self.figures]
+        with open(os.path.join(self.out, "README.md"), "w") as f:
+            f.write("\n".join(lines) + "\n")
+
+
+def write_report(study, runs, end_time, out):
+    report = Report(study, runs, end_time, out)
+    if not report.data:
+        raise SystemExit("report: no finished run in runs/ (study.py run first)")
+    report.build()
+    bad = [f"{run}.{w}.{k}" for run, values in report.numbers["runs"].items() for w, v in values.items()
+           if isinstance(v, dict) for k, s in v.items()
+           if isinstance(s, dict) and "mean" in s and not math.isfinite(s["mean"])]
+    print(f"report: {len(report.figures)} figures, {len(report.data)} runs -> {out}"
+          + (f"; NOT FINITE: {', '.join(bad)}" if bad else ""))
+    if bad:
+        raise SystemExit(1)
