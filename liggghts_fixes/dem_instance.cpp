@@ -202,7 +202,21 @@ double type_pair_property(LAMMPS_NS::LAMMPS *lmp, const char *name, int a, int b
   return fix ? static_cast<LAMMPS_NS::FixPropertyGlobal *>(fix)->compute_array(a, b) : fallback;
 }
 
+// Value of atom type a (0-based) of a per-type fix property/global named `name`, or `fallback`.
+double type_property(LAMMPS_NS::LAMMPS *lmp, const char *name, int a, double fallback) {
+  LAMMPS_NS::Fix *fix = lmp->modify->find_fix_property(name, "property/global", "peratomtype", 0, 0, "tfdem", false);
+  return fix ? static_cast<LAMMPS_NS::FixPropertyGlobal *>(fix)->compute_vector(a) : fallback;
+}
+
 }  // namespace
+
+bool DemInstance::hertz_contact(int a, int b, HertzContact &out) const {
+  out.young_a = type_property(lmp_, "youngsModulus", a - 1, -1.0);
+  out.young_b = type_property(lmp_, "youngsModulus", b - 1, -1.0);
+  out.poisson_a = type_property(lmp_, "poissonsRatio", a - 1, 0.0);
+  out.poisson_b = type_property(lmp_, "poissonsRatio", b - 1, 0.0);
+  return out.young_a > 0.0 && out.young_b > 0.0;
+}
 
 bool DemInstance::linear_contact(int a, int b, LinearContact &out) const {
   out.stiffness = type_pair_property(lmp_, "kn", a - 1, b - 1, -1.0);

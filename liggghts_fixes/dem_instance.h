@@ -84,6 +84,13 @@ class DemInstance {
   };
   bool linear_contact(int a, int b, LinearContact &out) const;
 
+  // Hertz contact parameters of atom types a and b (1-based), as the script set them with
+  // fix property/global (youngsModulus and poissonsRatio per atom type). False when absent.
+  struct HertzContact {
+    double young_a = 0.0, poisson_a = 0.0, young_b = 0.0, poisson_b = 0.0;
+  };
+  bool hertz_contact(int a, int b, HertzContact &out) const;
+
  private:
   // The script's text, checked, and resumed from restart_file when that is set.
   std::string script_to_run(const std::string &script, const std::string &restart_file) const;

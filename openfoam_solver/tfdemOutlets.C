@@ -28,7 +28,7 @@ Foam::TfdemOutlets::TfdemOutlets
         if (patchi < 0)
         {
             FatalErrorInFunction
-                << config << ": dem.outlets: no patch '" << name << "'"
+                << config << ": dem.outlets: no patch '" << name.c_str() << "'"
                 << tfdem::did_you_mean(name, patchNames).c_str() << "; patches: "
                 << tfdem::quoted_list(patchNames).c_str() << exit(FatalError);
         }
@@ -55,7 +55,7 @@ Foam::TfdemOutlets::TfdemOutlets
         if (mag(normal) == 0 || mag(upper[o.axis] - lower[o.axis]) > 1e-9*domain.mag())
         {
             FatalErrorInFunction
-                << config << ": dem.outlets: patch '" << name << "' is not flat on a face of"
+                << config << ": dem.outlets: patch '" << name.c_str() << "' is not flat on a face of"
                 << " the domain; particles can leave through such patches only"
                 << exit(FatalError);
         }

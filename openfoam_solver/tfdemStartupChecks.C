@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <vector>
 
 #include "dem_instance.h"
@@ -207,74 +208,135 @@ void Foam::tfdemChecks::inletVoidFraction
 namespace
 {
 
-// Lightest particle mass of each atom type (index type - 1; infinity: a type without
-// particles, e.g. a wall material), over all ranks.
-std::vector<double> lightestMassOfType(const tfdem::DemInstance& dem)
+// Smallest value of a per-particle property (mass, radius) of each atom type (index type - 1;
+// infinity: a type without particles, e.g. a wall material), over all ranks.
+std::vector<double> smallestOfType(const tfdem::DemInstance& dem, const double* values)
 {
-    std::vector<double> lightest(dem.type_count(), std::numeric_limits<double>::infinity());
+    std::vector<double> smallest(dem.type_count(), std::numeric_limits<double>::infinity());
     for (std::size_t i = 0; i < dem.local_count(); ++i)
     {
-        double& m = lightest[dem.types()[i] - 1];
-        m = std::min(m, dem.masses()[i]);
+        double& m = smallest[dem.types()[i] - 1];
+        m = std::min(m, values[i]);
     }
     MPI_Allreduce
     (
-        MPI_IN_PLACE, lightest.data(), int(lightest.size()), MPI_DOUBLE, MPI_MIN,
+        MPI_IN_PLACE, smallest.data(), int(smallest.size()), MPI_DOUBLE, MPI_MIN,
         MPI_COMM_WORLD
     );
-    return lightest;
+    return smallest;
 }
 
-// Effective mass of a contact between the lightest particles of two types; a type without
-// particles is a wall (infinite mass).
-double effectiveMass(double a, double b)
+// The fastest a particle may hit another or a wall: the fastest inflow, or a free fall over
+// the domain's extent along gravity.
+double largestImpactSpeed(const volVectorField& U, const vector& g)
+{
+    scalar fastest = 0;
+    forAll(U.boundaryField(), patchi)
+    {
+        if (U.boundaryField()[patchi].fixesValue())
+        {
+            fastest = max(fastest, gMax(mag(U.boundaryField()[patchi])));
+        }
+    }
+    const boundBox domain(U.mesh().points(), true);
+    const scalar fall = mag(g) > 0 ? std::sqrt(2*mag(g)*mag(domain.span() & (g/mag(g)))) : 0;
+    return max(fastest, fall);
+}
+
+// Reduced value (1/a + 1/b)^-1 of a contact's two sides (effective mass, effective radius);
+// a type without particles is a wall (infinite mass and radius).
+double reduced(double a, double b)
 {
     if (std::isinf(a)) return b;
     if (std::isinf(b)) return a;
     return tfdem::contact::effective_mass(a, b);
 }
 
-void contactTimeSteps(const fileName& script, const tfdem::DemInstance& dem)
+// Contact time of atom types a and b between their lightest, smallest particles and what
+// it is (for the messages); negative when the script gives no contact model we know.
+double contactTime
+(
+    const tfdem::DemInstance& dem,
+    int a,
+    int b,
+    double mEff,
+    double rEff,
+    double impactSpeed,
+    std::string& model
+)
 {
-    const std::vector<double> lightest = lightestMassOfType(dem);
+    std::ostringstream what;
+    tfdem::DemInstance::LinearContact linear;
+    if
+    (
+        dem.linear_contact(a, b, linear)
+     && (linear.damping >= 0 || linear.restitution >= 0)
+    )
+    {
+        what << "linear, k_n = " << linear.stiffness << " N/m, "
+             << (linear.damping >= 0 ? "eta_n = " : "e_n = ")
+             << (linear.damping >= 0 ? linear.damping : linear.restitution)
+             << (linear.damping >= 0 ? " N s/m" : "") << ", m_eff = " << mEff << " kg";
+        model = what.str();
+        return linear.damping >= 0
+          ? tfdem::contact::contact_time_from_damping(linear.stiffness, linear.damping, mEff)
+          : tfdem::contact::contact_time(linear.stiffness, linear.restitution, mEff);
+    }
+    tfdem::DemInstance::HertzContact hertz;
+    if (dem.hertz_contact(a, b, hertz))
+    {
+        const double modulus = tfdem::contact::effective_modulus
+        (
+            hertz.young_a, hertz.poisson_a, hertz.young_b, hertz.poisson_b
+        );
+        what << "Hertz, E* = " << modulus << " Pa, R* = " << rEff << " m, m_eff = " << mEff
+             << " kg, elastic at impact speed " << impactSpeed << " m/s";
+        model = what.str();
+        return tfdem::contact::hertz_contact_time(modulus, rEff, mEff, impactSpeed);
+    }
+    return -1;
+}
+
+void contactTimeSteps(const fileName& script, const tfdem::DemInstance& dem, double impactSpeed)
+{
+    const std::vector<double> lightest = smallestOfType(dem, dem.masses());
+    const std::vector<double> smallest = smallestOfType(dem, dem.radii());
     const double dt = dem.time_step();
     bool checked = false;
     for (int a = 1; a <= dem.type_count(); ++a)
     {
         for (int b = a; b <= dem.type_count(); ++b)
         {
-            const double mEff = effectiveMass(lightest[a - 1], lightest[b - 1]);
-            tfdem::DemInstance::LinearContact contact;
-            if
-            (
-                std::isinf(mEff) || !dem.linear_contact(a, b, contact)
-             || (contact.damping < 0 && contact.restitution < 0)
-            )
+            const double mEff = reduced(lightest[a - 1], lightest[b - 1]);
+            if (std::isinf(mEff))
             {
                 continue;
             }
-            const double tc = contact.damping >= 0
-              ? tfdem::contact::contact_time_from_damping(contact.stiffness, contact.damping, mEff)
-              : tfdem::contact::contact_time(contact.stiffness, contact.restitution, mEff);
+            std::string model;
+            const double rEff = reduced(smallest[a - 1], smallest[b - 1]);
+            const double tc = contactTime(dem, a, b, mEff, rEff, impactSpeed, model);
+            if (tc < 0)
+            {
+                continue;
+            }
             checked = true;
-            Info<< "TFDEM coupling: contact of atom types " << a << " and " << b
-                << ": k_n = " << contact.stiffness << " N/m, t_c = " << tc << " s (seed 000 eq. 26,"
-                << " lightest particles), " << tc/dt << " DEM steps per contact" << endl;
+            Info<< "TFDEM coupling: contact of atom types " << a << " and " << b << " ("
+                << model.c_str() << "): t_c = " << tc << " s (lightest particles), " << tc/dt
+                << " DEM steps per contact" << endl;
             const std::string problem = tfdem::dem_step_problem(tc, dt);
             if (!problem.empty())
             {
                 FatalErrorInFunction
                     << script << ": contact of atom types " << a << " and " << b
-                    << " (k_n = " << contact.stiffness << " N/m, eta_n = " << contact.damping
-                    << " N s/m, m_eff = " << mEff << " kg): " << problem.c_str()
-                    << exit(FatalError);
+                    << " (" << model.c_str() << "): " << problem.c_str() << exit(FatalError);
             }
         }
     }
     if (!checked)
     {
-        Info<< "TFDEM coupling: no linear k_n with gamman_abs or coefficientRestitution"
-            << " in the DEM script: contact time not checked" << endl;
+        Info<< "TFDEM coupling: the DEM script gives neither a linear contact (k_n with"
+            << " gamman_abs or coefficientRestitution) nor a Hertz one (youngsModulus):"
+            << " contact time not checked" << endl;
     }
 }
 
@@ -285,10 +347,12 @@ void Foam::tfdemChecks::timeSteps
 (
     const Time& runTime,
     const tfdem::CouplingConfig& config,
-    const tfdem::DemInstance& dem
+    const tfdem::DemInstance& dem,
+    const volVectorField& U,
+    const vector& g
 )
 {
-    contactTimeSteps(runTime.globalPath()/config.dem_script, dem);
+    contactTimeSteps(runTime.globalPath()/config.dem_script, dem, largestImpactSpeed(U, g));
     if (runTime.controlDict().lookupOrDefault<Switch>("adjustTimeStep", false))
     {
         FatalErrorInFunction

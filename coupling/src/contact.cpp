@@ -99,6 +99,22 @@ double tangential_damping(double tangential_stiffness, double tangential_restitu
   return normal_damping(tangential_stiffness, tangential_restitution, 2.0 / 7.0 * effective_mass);
 }
 
+double effective_modulus(double young_a, double poisson_a, double young_b, double poisson_b) {
+  require_positive(young_a, "young_a");
+  require_positive(young_b, "young_b");
+  for (const double nu : {poisson_a, poisson_b})
+    if (!(nu > -1.0 && nu < 0.5)) throw std::invalid_argument("Poisson's ratio must be in (-1, 0.5)");
+  return 1.0 / ((1.0 - poisson_a * poisson_a) / young_a + (1.0 - poisson_b * poisson_b) / young_b);
+}
+
+double hertz_contact_time(double modulus, double radius, double mass, double impact_speed) {
+  require_positive(modulus, "effective_modulus");
+  require_positive(radius, "effective_radius");
+  require_positive(mass, "effective_mass");
+  require_positive(impact_speed, "impact_speed");
+  return 2.868 * std::pow(mass * mass / (radius * modulus * modulus * impact_speed), 0.2);
+}
+
 double recommended_time_step(double contact_time, double steps_per_contact) {
   require_positive(contact_time, "contact_time");
   require_positive(steps_per_contact, "steps_per_contact");

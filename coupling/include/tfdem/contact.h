@@ -39,6 +39,16 @@ double tangential_stiffness(double normal_stiffness, double normal_restitution,
 double tangential_damping(double tangential_stiffness, double tangential_restitution,
                           double effective_mass);
 
+// Duration of an elastic Hertz contact (Johnson, Contact Mechanics, 1985, sec. 11.4; the
+// nonlinear contact f(delta/d) = sqrt(delta/d) of seed 000 eq. 21): normal force
+// (4/3) E* sqrt(R*) delta^(3/2), duration t_c = 2.868 (m*^2 / (R* E*^2 v))^(1/5) at impact
+// speed v, with the effective modulus 1/E* = (1 - nu_a^2)/E_a + (1 - nu_b^2)/E_b and
+// radius 1/R* = 1/R_a + 1/R_b (a wall: R_b infinite). It shortens as v grows; damping
+// lengthens it, so the elastic value bounds it from below.
+double effective_modulus(double young_a, double poisson_a, double young_b, double poisson_b);
+double hertz_contact_time(double effective_modulus, double effective_radius, double effective_mass,
+                          double impact_speed);
+
 // DEM time step resolving a contact with `steps_per_contact` steps (seed 000: dt <= t_c/50).
 double recommended_time_step(double contact_time, double steps_per_contact);
 
