@@ -128,7 +128,10 @@ class Case:
                 shutil.copytree(self.file(sub), os.path.join(dest, sub), ignore=shutil.ignore_patterns("polyMesh"))
         for name in os.listdir(self.path):
             if name == "coupling.yaml" or name.startswith("in.") or name in extra:
-                shutil.copy(self.file(name), dest)
+                if os.path.isdir(self.file(name)):
+                    shutil.copytree(self.file(name), os.path.join(dest, name))
+                else:
+                    shutil.copy(self.file(name), dest)
         return Case(dest)
 
     # OpenFOAM dictionaries -----------------------------------------------------------------

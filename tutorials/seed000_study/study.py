@@ -12,6 +12,7 @@ and the others go on; the command then exits non-zero. --end-time shortens every
 averaging windows scale with it), for a quick check of the whole pipeline.
 """
 import argparse
+import difflib
 import json
 import os
 import re
@@ -34,12 +35,25 @@ class StudyError(Exception):
     """A study definition or run problem, named."""
 
 
+RUN_KEYS = ("bed", "coupling", "refine_y", "tfm")
+
+
 def load_study(path=os.path.join(STUDY_DIR, "study.yaml")):
-    with open(path) as f:
-        study = yaml.safe_load(f)
+    try:
+        with open(path) as f:
+            study = yaml.safe_load(f)
+    except OSError as e:
+        raise StudyError(f"{path}: cannot read the study definition ({e.strerror})") from None
+    except yaml.YAMLError as e:
+        raise StudyError(f"{path}: malformed YAML: {e}") from None
     for name, spec in study["runs"].items():
         if spec.get("bed") not in study["beds"]:
             raise StudyError(f"{path}: run {name}: bed must be one of {sorted(study['beds'])}, got {spec.get('bed')!r}")
+        for key in spec:
+            if key not in RUN_KEYS:
+                near = difflib.get_close_matches(key, RUN_KEYS, 1)
+                raise StudyError(f"{path}: run {name}: unknown key '{key}'"
+                                 + (f" (did you mean '{near[0]}'?)" if near else "") + f"; valid: {', '.join(RUN_KEYS)}")
     return study
 
 
@@ -268,7 +282,8 @@ def print_progress(active, started):
     for r, _ in active:
         t, end = r.progress()
         wall = now - started[r.name]
-        done = t / end if end else 0
+        t0 = r.status().get("resumed_from") or 0.0
+        done = (t - float(t0)) / (end - float(t0)) if end > float(t0) else 0
         eta = wall * (1 - done) / done if done > 0 else float("nan")
         print(f"  {r.name:<26} t = {t:8.3f} / {end:g} s   wall {_clock(wall)}   ETA "
               f"{_clock(eta) if eta == eta else '?'}", flush=True)
@@ -327,9 +342,10 @@ def main(argv=None):
     parser.add_argument("--end-time", type=float, default=None, help="simulated seconds per run (default: study.yaml's)")
     parser.add_argument("--jobs", type=int, default=2, help="runs side by side (default 2: one per core)")
     parser.add_argument("--root", default=STUDY_DIR, help="folder for runs/ and report/ (default: the study's)")
+    parser.add_argument("--study", default=os.path.join(STUDY_DIR, "study.yaml"), help="study definition")
     args = parser.parse_args(argv)
     try:
-        study = load_study()
+        study = load_study(args.study)
         end_time = args.end_time or study["end_time"]
         if not end_time > 0:
             raise StudyError(f"--end-time must be positive, got {end_time}")

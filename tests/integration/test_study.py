@@ -1,0 +1,95 @@
+"""Seed 000's study pipeline end to end on a short run (tutorials/seed000_study).
+
+1. `study.py run` and `report` on the uniform bed, TF-DEM (method 1) and the TFM peer, 0.2 s
+   each (windows and intervals scale with the end time): every figure the two runs allow, the
+   CSVs and README table are written and every statistic is finite.
+2. Bad input, each a clear message: an unknown study name (./tfdem study); no
+   twoPhaseEulerFoam on PATH; a run that fails (cells 1 mm tall, 2.5 mm particles, with
+   the centroid mapping stop at t = 0) -- the study exits 1 naming it, the other run finishes
+   and keeps its results, and the report covers it.
+"""
+import json
+import os
+import subprocess
+
+import yaml
+
+from tfdem import SOURCE_DIR
+from tfdem.run import environment
+from tfdem_testlib import Checks, scratch
+
+STUDY = os.path.join(SOURCE_DIR, "tutorials", "seed000_study")
+
+
+def study(args, env=None):
+    proc = subprocess.run(["/usr/bin/python3", os.path.join(STUDY, "study.py")] + args, env=env or environment(),
+                          stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, errors="replace")
+    print(proc.stdout[-3000:])
+    return proc.returncode, proc.stdout
+
+
+def check_pipeline(checks):
+    root = scratch("study_quick")
+    args = ["--runs", "uniform_m1,uniform_tfm", "--end-time", "0.2", "--root", root]
+    code, _ = study(["run"] + args)
+    checks.true("quick study ran", code == 0, f"(exit code {code})")
+    code, output = study(["report"] + args)
+    checks.true("report written, every statistic finite", code == 0 and "NOT FINITE" not in output, f"(exit code {code})")
+    report = os.path.join(root, "report")
+    for name in ("README.md", "numbers.json", "fig5_coordination.png", "fig9_uniform_mean_height.png",
+                 "fig10_uniform_particles.png", "fig11_multicontact.png", "fig12_uniform_forces.png",
+                 "fig13_uniform_methods.png", os.path.join("csv", "uniform_m1_particles.csv"),
+                 os.path.join("csv", "uniform_m1_pressure.csv"), os.path.join("csv", "uniform_tfm_particles.csv")):
+        path = os.path.join(report, name)
+        checks.true(f"report/{name} written", os.path.isfile(path) and os.path.getsize(path) > 0)
+    if os.path.isfile(os.path.join(report, "numbers.json")):
+        numbers = json.load(open(os.path.join(report, "numbers.json")))
+        m1 = numbers["runs"]["uniform_m1"]["0.05-0.1"]
+        for key in ("mean_height", "bulk_coordination", "multicontact", "dp20"):
+            checks.true(f"uniform_m1 {key} has a mean and an error", m1[key]["mean"] == m1[key]["mean"]
+                        and m1[key]["error"] == m1[key]["error"], f"({m1[key]})")
+    code, output = study(["run"] + args)
+    checks.true("a second run skips the finished runs", code == 0 and output.count("skipped") == 2)
+
+
+def check_bad_input(checks):
+    code = subprocess.run([os.path.join(SOURCE_DIR, "tfdem"), "study", "seed0"], stdout=subprocess.PIPE,
+                          stderr=subprocess.STDOUT, text=True)
+    checks.true("unknown study name", code.returncode == 2 and "unknown study 'seed0'; studies: seed000" in code.stdout,
+                f"(exit code {code.returncode})")
+
+    env = environment()
+    env["PATH"] = os.path.join(SOURCE_DIR, "build", "nothing-here")
+    root = scratch("study_no_tfm")
+    code, output = study(["run", "--runs", "uniform_tfm", "--end-time", "0.2", "--root", root], env)
+    checks.true("no twoPhaseEulerFoam", code == 2 and "twoPhaseEulerFoam is not on PATH" in output, f"(exit code {code})")
+
+    root = scratch("study_failing_run")
+    definition = yaml.safe_load(open(os.path.join(STUDY, "study.yaml")))
+    definition["runs"] = {"uniform_m1": {"bed": "uniform"}, "uniform_small_cells": {"bed": "uniform", "refine_y": 10}}
+    path = os.path.join(root, "study.yaml")
+    yaml.safe_dump(definition, open(path, "w"))
+    args = ["--end-time", "0.2", "--root", root, "--study", path]
+    code, output = study(["run"] + args)
+    checks.true("a failing run makes the study exit 1", code == 1, f"(exit code {code})")
+    checks.true("the failing run is named with its cause", "uniform_small_cells: tfdemFoam failed" in output
+                and "fill it: gas fraction" in output)
+    checks.true("the other run finished", "uniform_m1: finished" in output)
+    code, output = study(["report"] + args)
+    checks.true("the report covers the finished run", code == 0 and "1 runs" in output, f"(exit code {code})")
+    bad_key = dict(definition)
+    bad_key["runs"] = {"uniform_m1": {"bed": "uniform", "refine": 2}}
+    yaml.safe_dump(bad_key, open(path, "w"))
+    code, output = study(["run"] + args)
+    checks.true("a misspelt run key", code == 2 and "unknown key 'refine' (did you mean 'refine_y'?)" in output)
+
+
+def main():
+    checks = Checks()
+    check_pipeline(checks)
+    check_bad_input(checks)
+    checks.finish()
+
+
+if __name__ == "__main__":
+    main()
