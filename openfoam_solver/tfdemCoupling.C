@@ -3,6 +3,7 @@
 #include <mpi.h>
 
 #include <chrono>
+#include <cmath>
 #include <sstream>
 #include <stdexcept>
 
@@ -250,6 +251,17 @@ void Foam::TfdemCoupling::computeForces(const tfdem::ParticleView& view)
             << "at t = " << mesh_.time().value() << " s: " << e.what() << exit(FatalError);
     }
     report_.couplingStep(core_->totals(), core_->exchange().remote_records());
+    const std::vector<double>& drag = core_->particle_drag();
+    double sums[4] = {0, 0, 0, 0};
+    for (std::size_t i = 0; i < view.count; ++i)
+    {
+        const double* f = &drag[3*i];
+        for (int a = 0; a < 3; ++a) sums[a] += f[a];
+        sums[3] += std::sqrt(f[0]*f[0] + f[1]*f[1] + f[2]*f[2]);
+    }
+    MPI_Allreduce(MPI_IN_PLACE, sums, 4, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+    particleDrag_ = vector(sums[0], sums[1], sums[2]);
+    particleDragMagnitude_ = sums[3];
     const std::vector<double>& force = core_->particle_force();
     dem_->set_fluid_force(force);
 
@@ -304,6 +316,17 @@ void Foam::TfdemCoupling::stopOnEmptyGas(const tfdem::ParticleView& view) const
         << " diameters wide, or a mapping that spreads each particle over the cells it"
         << " overlaps (coupling.void_fraction.method: divided or porous_cube)."
         << exit(FatalError);
+}
+
+
+void Foam::TfdemCoupling::gasSolved()
+{
+    const vector gasReceived =
+        gSum(mesh_.V().field()*Ksl_.primitiveField()*(gasVelocity_.primitiveField() - Us_.primitiveField()));
+    report_.momentumExchange
+    (
+        mesh_.time().deltaTValue(), gasReceived, particleDrag_, particleDragMagnitude_
+    );
 }
 
 

@@ -93,6 +93,7 @@ int main(int argc, char *argv[])
                     std::chrono::steady_clock::now() - gasStart
                 ).count()
             );
+            coupling->gasSolved();
         }
 
         runTime.write();

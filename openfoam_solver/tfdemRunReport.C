@@ -68,6 +68,23 @@ void Foam::TfdemRunReport::progress()
 }
 
 
+void Foam::TfdemRunReport::momentumExchange
+(
+    scalar dt,
+    const vector& gasReceived,
+    const vector& particleDrag,
+    scalar particleDragMagnitude
+)
+{
+    gasImpulse_ += dt*gasReceived;
+    particleImpulse_ += dt*particleDrag;
+    dragImpulseMagnitude_ += dt*particleDragMagnitude;
+    largestStepExchangeDifference_ =
+        max(largestStepExchangeDifference_, dt*mag(gasReceived - particleDrag));
+    ++exchangeSteps_;
+}
+
+
 void Foam::TfdemRunReport::courant(scalar courantNumber)
 {
     largestCourant_ = max(largestCourant_, courantNumber);
@@ -104,6 +121,17 @@ void Foam::TfdemRunReport::report
         << " steps without floor; max |momentum imbalance|"
         << " / sum |drag| = " << maxMomentumImbalance_ << " (" << transferMethod << ")"
         << endl;
+    if (dragImpulseMagnitude_ > 0)
+    {
+        Info<< "TFDEM momentum exchange: drag impulse the gas received " << gasImpulse_
+            << " N s, the particles " << particleImpulse_ << " N s over the run; |difference|"
+            << " / sum |drag impulse| = "
+            << mag(gasImpulse_ - particleImpulse_)/dragImpulseMagnitude_
+            << " over " << exchangeSteps_ << " coupling steps; the largest of one step is "
+            << largestStepExchangeDifference_*exchangeSteps_/dragImpulseMagnitude_
+            << " of a step's mean |drag impulse| (the particles feel the gas velocity of the"
+            << " step before)" << endl;
+    }
     if (Pstream::parRun())
     {
         Info<< "TFDEM parallel: " << returnReduce(remoteRecords_, sumOp<scalar>())

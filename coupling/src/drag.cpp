@@ -12,18 +12,14 @@ namespace {
 constexpr double kDenseDiluteSwitch = 0.8;  // seed 000 eq. 30, seed 001 eq. 3-4
 constexpr double kNewtonRegimeRe = 1000.0;  // seed 000 eq. 31, seed 001 eq. 4
 
-// Ergun, seed 000 eq. 30 first line: beta/eps_s = 150 eps_s mu/(eps_g d^2) + 1.75 rho |u-v|/d.
-double ergun_seed000(const State &s, const Gas &g) {
+// Ergun (1952), seed 000 eq. 30 first line: beta/eps_s = 150 eps_s mu/(eps_g d^2) + 1.75 rho
+// |u-v|/d. Seed 001 eq. 3 prints the inertial term as 1.75 eps_s Re with Re = eps_g rho |u-v|
+// d/mu, which is eps_g times this (and times Ergun's pressure drop); taken as a misprint:
+// F = 150 eps_s^2/eps_g + 1.75 eps_s Re/eps_g is Ergun's law in that paper's variables.
+double ergun(const State &s, const Gas &g) {
   const double eps_s = 1.0 - s.gas_fraction;
   return 150.0 * eps_s * g.viscosity / (s.gas_fraction * s.diameter * s.diameter) +
          1.75 * g.density * s.slip_speed / s.diameter;
-}
-
-// Ergun as printed in seed 001 eq. 3: F = 150 eps_s^2/eps_g + 1.75 eps_s Re.
-double ergun_seed001(const State &s, const Gas &g) {
-  const double eps_s = 1.0 - s.gas_fraction;
-  const double scale = g.viscosity / (s.diameter * s.diameter);
-  return scale * (150.0 * eps_s / s.gas_fraction + 1.75 * reynolds(s, g));
 }
 
 // Wen-Yu, seed 000 eq. 30 second line / seed 001 eq. 4:
@@ -37,15 +33,15 @@ double wen_yu(const State &s, const Gas &g, double exponent, double newton_cd) {
 }
 
 double ergun_wen_yu(const State &s, const Gas &g) {
-  return s.gas_fraction < kDenseDiluteSwitch ? ergun_seed000(s, g) : wen_yu(s, g, 2.7, 0.43);
+  return s.gas_fraction < kDenseDiluteSwitch ? ergun(s, g) : wen_yu(s, g, 2.7, 0.43);
 }
 
 double ergun_wen_yu_review(const State &s, const Gas &g) {
-  return s.gas_fraction < kDenseDiluteSwitch ? ergun_seed001(s, g) : wen_yu(s, g, 2.65, 0.44);
+  return s.gas_fraction < kDenseDiluteSwitch ? ergun(s, g) : wen_yu(s, g, 2.65, 0.44);
 }
 
 double min_ergun_wen_yu(const State &s, const Gas &g) {
-  return std::min(ergun_seed001(s, g), wen_yu(s, g, 2.65, 0.44));
+  return std::min(ergun(s, g), wen_yu(s, g, 2.65, 0.44));
 }
 
 // Seed 001 eq. 5: F = A eps_s^2/eps_g + B eps_s Re, divided by eps_s. For eps_g > 0.6,

@@ -17,17 +17,31 @@ namespace {
 
 const std::vector<std::string> kOptions = {"--gas-velocity", "--cell-size", "--kn", "--damping", "--dt"};
 
+const char *kUsage =
+    "usage: tfdem-scene-check <coupling.yaml> --gas-velocity U --cell-size DX --kn K --damping ETA --dt DT\n"
+    "The dimensionless numbers of a gas-particle scene (St, Re_p, Ar, U_mf, terminal velocity,\n"
+    "contact time, drag response time, cell/particle ratio) and what it needs: DEM step,\n"
+    "coupling interval, void-fraction method. Gas, particles, drag law and coupling interval\n"
+    "come from coupling.yaml; the rest from the options, SI units:\n"
+    "  --gas-velocity U   characteristic (superficial inflow) gas velocity, m/s\n"
+    "  --cell-size DX     smallest in-plane gas cell size, m\n"
+    "  --kn K             particle-particle normal stiffness k_n, N/m\n"
+    "  --damping ETA      particle-particle normal damping eta_n (absolute), N s/m\n"
+    "  --dt DT            DEM time step, s\n"
+    "Exit code: 0 fine, 1 the scene has errors, 2 bad input.\n";
+
 int usage_error(const std::string &message) {
-  std::fprintf(stderr,
-               "tfdem-scene-check: %s\nusage: tfdem-scene-check <coupling.yaml> --gas-velocity U --cell-size DX "
-               "--kn K --damping ETA --dt DT   (SI units)\n",
-               message.c_str());
+  std::fprintf(stderr, "tfdem-scene-check: %s\n%s", message.c_str(), kUsage);
   return 2;
 }
 
 }  // namespace
 
 int main(int argc, char **argv) {
+  if (argc == 2 && (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h")) {
+    std::printf("%s", kUsage);
+    return 0;
+  }
   if (argc < 2) return usage_error("missing coupling.yaml");
   std::map<std::string, double> values;
   for (int i = 2; i < argc; i += 2) {

@@ -9,21 +9,37 @@ so they cross ranks and their stored force must travel with them.
 """
 import os
 
-from tfdem_testlib import SOURCE_DIR, Checks, run, scratch
+from tfdem import SOURCE_DIR
+from tfdem.case import DemScript
+from tfdem.outputs import dump_frames
+from tfdem_testlib import Checks, run, scratch
 
-G, Z0, DT, STEPS = 9.81, 0.9, 1e-4, 5000
+STEPS = 5000
 SCRIPT = os.path.join(SOURCE_DIR, "tests", "cases", "dem_free_fall", "in.free_fall")
-RANK_BOUNDARY_Z = 0.5
+
+
+class Scene:
+    """g, the start height, the DEM step and the z the box is split at on 2 ranks (its middle:
+    `processors 1 1 *`), from the script."""
+
+    def __init__(self, path):
+        dem = DemScript(path)
+        self.g = -dem.gravity()[2]
+        self.z0 = dem.value(dem.command("create_atoms")[5])  # create_atoms 1 single x y z
+        self.dt = dem.time_step()
+        lo, hi = dem.region("box")
+        self.rank_boundary_z = 0.5 * (lo[2] + hi[2])
 
 
 def last_snapshot(path):
-    lines = open(path).read().splitlines()
-    start = max(i for i, line in enumerate(lines) if line.startswith("ITEM: ATOMS"))
-    header = lines[start].split()[2:]
-    return [dict(zip(header, map(float, line.split()))) for line in lines[start + 1:] if line.strip()]
+    frames = dump_frames(path)
+    columns, rows = frames[max(frames)]
+    return [dict(zip(columns, row)) for row in rows]
 
 
 def check_case(checks, fraction, ranks):
+    scene = Scene(SCRIPT)
+    G, Z0, DT = scene.g, scene.z0, scene.dt
     case = scratch(f"dem_free_fall_f{fraction}_np{ranks}")
     run(["tfdem-liggghts", "-in", SCRIPT, "-var", "weight_fraction", str(fraction),
          "-var", "steps", str(STEPS), "-var", "dumpfile", "dump.final", "-log", "log.liggghts"],
@@ -40,8 +56,8 @@ def check_case(checks, fraction, ranks):
     checks.within(f"f={fraction} np={ranks}: max |drop - (1-f) g t^2/2| / scale", worst_z / scale_z, 0.0, 1e-6)
     checks.within(f"f={fraction} np={ranks}: max |v - v_exact| / scale", worst_v / scale_v, 0.0, 1e-6)
     if ranks > 1 and fraction < 1:
-        checks.true(f"f={fraction} np={ranks}: atoms crossed the rank boundary z = 0.5 m",
-                    all(a["z"] < RANK_BOUNDARY_Z < Z0 for a in atoms))
+        checks.true(f"f={fraction} np={ranks}: atoms crossed the rank boundary z = {scene.rank_boundary_z:g} m",
+                    all(a["z"] < scene.rank_boundary_z < Z0 for a in atoms))
 
 
 def main():

@@ -1,7 +1,7 @@
 """Fluidization curve (tutorials/fluidization_curve): the superficial velocity stepped up
 through U_mf to 2.2 m/s and back down, 825 spheres on a porous distributor plate.
 
-Checks, with the tutorial's own analysis (fluidization.py):
+Checks, with the tutorial's own schedule (levels.yaml) and analysis (tfdem.fluidization):
 - the plateau (18 s of fluidized levels, 0.5 s batch means) within 2 % of the net bed weight per
   area, the issue's target (measured −1.83 % ± 0.11 % standard error: the plate carries 1.8 % of
   the weight when fluidized, see the tutorial's README);
@@ -12,14 +12,11 @@ Checks, with the tutorial's own analysis (fluidization.py):
   pressure drop shows (the level means still hold the bed's momentum change while it expands).
 """
 import os
-import sys
 
-from tfdem_testlib import SOURCE_DIR, Checks, run, scratch
+from tfdem import TUTORIALS, fluidization
+from tfdem_testlib import Checks, run, scratch
 
-TUTORIAL = os.path.join(SOURCE_DIR, "tutorials", "fluidization_curve")
-sys.path.insert(0, TUTORIAL)
-import fluidization as f  # noqa: E402
-
+TUTORIAL = os.path.join(TUTORIALS, "fluidization_curve")
 PLATEAU_TOLERANCE = 0.02   # the issue's plateau target, of the net bed weight
 WEN_YU_TOLERANCE = 0.10   # the issue's U_mf target
 FORCE_BALANCE_TOLERANCE = 0.01   # of the bed weight
@@ -27,19 +24,22 @@ FORCE_BALANCE_TOLERANCE = 0.01   # of the bed weight
 
 def main():
     checks = Checks()
+    schedule = fluidization.Schedule.load(os.path.join(TUTORIAL, "levels.yaml"))
     case = scratch("fluidization_curve")
-    f.prepare_run(TUTORIAL, case, run)
-    s = f.summary(case)
-    volume = s["particles"] * f.particle_volume()
-    area = f.WIDTH * f.DEPTH
-    weight = volume * f.RHO_P * f.G / area
-    buoyancy = volume * f.RHO_G * f.G / area
+    fluidization.prepare_run(TUTORIAL, case, schedule, run)
+    s = fluidization.summary(case, schedule)
+    for line in fluidization.report(s, schedule):
+        print(line)
+    bed = s["bed"]
+    area = bed.width * bed.depth
+    weight = bed.weight() / area
+    buoyancy = bed.solid_volume * bed.rho_g * bed.g / area
     print(f"plateau standard error {100 * s['plateau_error'] / s['weight']:.2f} % of the weight"
           f" ({s['plateau_batches']} batches); the plate carries {100 * s['plate_share']:.1f} %")
     checks.close("plateau vs net bed weight / area (Pa)", s["plateau"], s["weight"], PLATEAU_TOLERANCE)
     checks.close("U_mf, falling branch, vs Wen-Yu (m/s)", s["u_mf"], s["wen_yu"], WEN_YU_TOLERANCE)
     for k, r in enumerate(s["levels"]):
-        branch = "rising" if k < f.RISING_COUNT else "falling"
+        branch = "rising" if k < schedule.rising_count else "falling"
         checks.within(f"{branch} {r['u']} m/s: pressure drop vs gas force on the particles less"
                       " buoyancy, per area (Pa)", r["dp"], r["gas"] * weight - buoyancy,
                       FORCE_BALANCE_TOLERANCE * weight)

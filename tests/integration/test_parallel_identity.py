@@ -11,72 +11,74 @@ records exchanged between ranks. Compared:
 same tolerance); everything else is the same arithmetic in a different order (~1e-15).
 """
 import os
-import re
-import sys
 
-from tfdem_testlib import SOURCE_DIR, Checks, copy_case, fail, run, write_decompose_dict
-
-TUTORIALS = os.path.join(SOURCE_DIR, "tutorials")
-sys.path.insert(0, os.path.join(TUTORIALS, "settling_particle"))
-sys.path.insert(0, os.path.join(TUTORIALS, "packed_bed_ergun"))
-import ergun  # noqa: E402
-import settling_ode  # noqa: E402
+from tfdem import TUTORIALS
+from tfdem.case import Case
+from tfdem.fixed_bed import FixedBed
+from tfdem.outputs import dump_track, log_numbers
+from tfdem.physics import SettlingSphere
+from tfdem_testlib import Checks, copy_case, fail, run, write_decompose_dict
 
 TOLERANCE = 1e-8
 
 
-def split_dem_in_x(case, script):
-    """Put `processors 2 1 1` before create_box in the DEM input."""
-    path = os.path.join(case, script)
+def split_dem_in_x(case):
+    """Put `processors 2 1 1` before create_box in the case's DEM script."""
+    path = Case(case).dem_script()
     text = open(path).read()
     if "create_box" not in text:
         fail(f"{path}: no create_box line to put 'processors' before")
     open(path, "w").write(text.replace("create_box", "processors      2 1 1\ncreate_box", 1))
 
 
-def run_case(source, name, script, ranks, edit=None):
-    """Copy, mesh and run a tutorial case on `ranks` ranks; return (case dir, solver log)."""
+def run_case(source, name, ranks, edit=None):
+    """Copy, mesh and run a tutorial case on `ranks` ranks; return the case dir."""
     case = copy_case(source, name)
     if edit:
         edit(case)
     run(["blockMesh"], case, "log.blockMesh")
     if ranks == 1:
-        return case, run(["tfdemFoam"], case, "log.tfdemFoam")[1]
-    split_dem_in_x(case, script)
+        run(["tfdemFoam"], case, "log.tfdemFoam")
+        return case
+    split_dem_in_x(case)
     write_decompose_dict(case, (1, 2, 1))
     run(["decomposePar"], case, "log.decomposePar")
-    return case, run(["tfdemFoam", "-parallel"], case, "log.tfdemFoam", ranks=ranks)[1]
+    run(["tfdemFoam", "-parallel"], case, "log.tfdemFoam", ranks=ranks)
+    return case
 
 
-def remote_records(log):
-    match = re.search(r"TFDEM parallel: (\S+) cell records received from particles on other ranks", log)
-    return float(match.group(1)) if match else 0.0
+def remote_records(case):
+    found = log_numbers(os.path.join(case, "log.tfdemFoam"),
+                        r"TFDEM parallel: (\S+) cell records received from particles on other ranks")
+    return found[0] if found else 0.0
 
 
 def main():
     checks = Checks()
     source = os.path.join(TUTORIALS, "settling_particle")
-    serial, _ = run_case(source, "identity_settling_1", "in.settling", 1)
-    parallel, log = run_case(source, "identity_settling_2", "in.settling", 2)
-    checks.true("settling: particle in cells of the other rank", remote_records(log) > 0,
-                f"({remote_records(log):g} remote cell records)")
-    one = settling_ode.read_track(os.path.join(serial, "particle.dump"))
-    two = settling_ode.read_track(os.path.join(parallel, "particle.dump"))
+    serial = run_case(source, "identity_settling_1", 1)
+    parallel = run_case(source, "identity_settling_2", 2)
+    checks.true("settling: particle in cells of the other rank", remote_records(parallel) > 0,
+                f"({remote_records(parallel):g} remote cell records)")
+    one = dump_track(serial, "vy")
+    two = dump_track(parallel, "vy")
     checks.true("settling: same samples", len(one) == len(two) == 51, f"({len(one)}, {len(two)})")
-    worst = max(abs(a[1] - b[1]) for a, b in zip(one, two)) / settling_ode.terminal_velocity()
+    worst = max(abs(a[1] - b[1]) for a, b in zip(one, two)) / SettlingSphere.from_case(Case(source)).terminal_velocity()
     checks.within("settling: max |v_1 - v_2| / u_t", worst, 0.0, TOLERANCE)
 
     source = os.path.join(TUTORIALS, "packed_bed_ergun")
+    bed = FixedBed(source)
+
     def edit(case):
-        ergun.set_inlet_velocity(case, 0.6)
-    serial, _ = run_case(source, "identity_packed_1", "in.fixed_bed", 1, edit)
-    parallel, log = run_case(source, "identity_packed_2", "in.fixed_bed", 2, edit)
-    checks.true("packed bed: particles in cells of the other rank", remote_records(log) > 0,
-                f"({remote_records(log):g} remote cell records)")
-    dp_one = ergun.measured_pressure_drop(serial)
-    dp_two = ergun.measured_pressure_drop(parallel)
+        Case(case).set_patch_value("U", "inlet", (0, 0.6, 0))
+    serial = run_case(source, "identity_packed_1", 1, edit)
+    parallel = run_case(source, "identity_packed_2", 2, edit)
+    checks.true("packed bed: particles in cells of the other rank", remote_records(parallel) > 0,
+                f"({remote_records(parallel):g} remote cell records)")
+    dp_one = bed.measured_pressure_drop(serial)
+    dp_two = bed.measured_pressure_drop(parallel)
     checks.close("packed bed: pressure drop on 2 ranks vs 1 (Pa)", dp_two, dp_one, TOLERANCE)
-    checks.close("packed bed: pressure drop vs Ergun (Pa)", dp_two, ergun.ergun_pressure_drop(0.6), 0.03)
+    checks.close("packed bed: pressure drop vs Ergun (Pa)", dp_two, bed.expected_pressure_drop(0.6), 0.03)
     checks.finish()
 
 

@@ -1,20 +1,22 @@
 """One sphere settling from rest in still air, coupled tfdemFoam + LIGGGHTS.
 
-Expected values come from tutorials/settling_particle/settling_ode.py (the sphere's ODE with
-the paper's drag law, RK4 at 1e-6 s), independent of the solver:
+Expected values come from tfdem.physics.SettlingSphere, built from the case's own files (the
+sphere's ODE with the paper's drag law, seed 000 eq. 28-31, RK4 at 1e-6 s), independent of
+the solver:
   - terminal velocity: DEM value at 0.5 s (~10 drag relaxation times) within 1 %;
   - velocity-time curve: every 0.01 s within 1 % of the terminal velocity.
 The 1 % covers the explicit coupling lag (forces held for 1e-3 s, 2 % of the 0.05 s drag
 relaxation time) and the gas the particle drags along (~0.1 % of u_t in a 2 cm cell).
 """
 import os
-import sys
 
-from tfdem_testlib import SOURCE_DIR, Checks, copy_case, run
+from tfdem import TUTORIALS
+from tfdem.case import Case
+from tfdem.outputs import dump_track
+from tfdem.physics import SettlingSphere
+from tfdem_testlib import Checks, copy_case, run
 
-TUTORIAL = os.path.join(SOURCE_DIR, "tutorials", "settling_particle")
-sys.path.insert(0, TUTORIAL)
-import settling_ode  # noqa: E402
+TUTORIAL = os.path.join(TUTORIALS, "settling_particle")
 
 
 def main():
@@ -22,11 +24,12 @@ def main():
     case = copy_case(TUTORIAL, "settling")
     run(["blockMesh"], case, "log.blockMesh")
     run(["tfdemFoam"], case, "log.tfdemFoam")
-    track = settling_ode.read_track(os.path.join(case, "particle.dump"))
+    sphere = SettlingSphere.from_case(Case(case))
+    track = dump_track(case, "vy")
     checks.true("51 samples over 0.5 s", len(track) == 51, f"(got {len(track)})")
-    expected = settling_ode.velocity([t for t, _ in track])
-    u_t = settling_ode.terminal_velocity()
-    checks.within("terminal velocity: acceleration at u_t (m/s^2)", settling_ode.acceleration(-u_t), 0.0, 1e-9)
+    expected = sphere.velocity([t for t, _ in track])
+    u_t = sphere.terminal_velocity()
+    checks.within("terminal velocity: acceleration at u_t (m/s^2)", sphere.acceleration(-u_t), 0.0, 1e-9)
     checks.close("terminal velocity (m/s) at t = 0.5 s", -track[-1][1], u_t, 0.01)
     worst = max(abs(v - e) for (_, v), e in zip(track, expected)) / u_t
     checks.within("max |v - v_ODE| / u_t over 0-0.5 s", worst, 0.0, 0.01)

@@ -30,14 +30,42 @@ TEST(Drag, StokesLimitOfEachLaw) {
     EXPECT_NEAR(beta_per_solid_fraction(law, stokes_state(), kAir) / stokes(), 1.0, 1e-4) << law_name(law);
   }
   EXPECT_NEAR(beta_per_solid_fraction(Law::DiFelice, stokes_state(), kAir) / stokes(), 4.8 * 4.8 / 24.0, 1e-4);
-  EXPECT_NEAR(stokes_beta_per_solid_fraction(kD, kAir), stokes(), 1e-12 * stokes());
+}
+
+// Stokes' sphere: at its terminal velocity u_t = (rho_p - rho_g) g d^2 / (18 mu) (Stokes
+// 1851) the drag V_p (beta/eps_s) u_t balances the net weight (rho_p - rho_g) g V_p.
+TEST(Drag, StokesDragBalancesWeightAtStokesTerminalVelocity) {
+  const double d = 5e-5, rho_p = 2500.0, g = 9.81;
+  const double u_t = (rho_p - kAir.density) * g * d * d / (18.0 * kAir.viscosity);
+  const double volume = 3.14159265358979323846 * d * d * d / 6.0;
+  EXPECT_NEAR(stokes_beta_per_solid_fraction(d, kAir) * volume * u_t, (rho_p - kAir.density) * g * volume,
+              1e-12 * rho_p * g * volume);
+}
+
+// Values at general states computed outside this code (a separate Python implementation of
+// the published formulas, d = 2.5 mm, air): Ergun (1952) at eps_g = 0.45, slip 0.8 m/s;
+// Hill, Koch & Ladd (seed 001 eq. 5, A divided by eps_s above eps_g = 0.6, see drag.h) at
+// eps_g = 0.5 and 0.7; Koch & Hill (2001), beta = 18 mu eps_g^2 eps_s/d^2 (F0 + F3 Re/2), at
+// eps_g = 0.7 and 0.5; Di Felice (1994), f = C_D rho pi d^2/8 eps_g^2 |u-v|^2 eps_g^-chi,
+// at eps_g = 0.7 (slip 0.8) and 0.45 (slip 0.3). Relative tolerance 1e-9 (printed digits).
+TEST(Drag, HandComputedValuesAtGeneralStates) {
+  struct Point {
+    Law law;
+    double gas_fraction, slip, beta;
+  };
+  for (const Point &p : {Point{Law::ErgunWenYuReview, 0.45, 0.8, 660.0}, Point{Law::MinErgunWenYu, 0.45, 0.8, 660.0},
+                         Point{Law::HillKochLadd, 0.5, 0.8, 457.1448}, Point{Law::HillKochLadd, 0.7, 0.8, 167.603904789},
+                         Point{Law::KochHill, 0.7, 0.8, 167.556884381}, Point{Law::KochHill, 0.5, 0.8, 456.9912},
+                         Point{Law::DiFelice, 0.7, 0.8, 163.463605405}, Point{Law::DiFelice, 0.45, 0.3, 372.452759349}})
+    EXPECT_NEAR(beta(p.law, {p.gas_fraction, kD, p.slip}, kAir), p.beta, 1e-9 * p.beta)
+        << law_name(p.law) << " at eps_g " << p.gas_fraction;
 }
 
 // Documented: min(Ergun, Wen-Yu) takes Ergun in the dilute low-Re limit, far below Stokes.
 TEST(Drag, MinErgunWenYuMissesStokesLimitAsDocumented) {
   const State s = stokes_state();
   const double eps_s = 1.0 - s.gas_fraction;
-  const double ergun = kAir.viscosity / (kD * kD) * (150.0 * eps_s / s.gas_fraction + 1.75 * reynolds(s, kAir));
+  const double ergun = 150.0 * eps_s * kAir.viscosity / (s.gas_fraction * kD * kD) + 1.75 * kAir.density * s.slip_speed / kD;
   EXPECT_NEAR(beta_per_solid_fraction(Law::MinErgunWenYu, s, kAir), ergun, 1e-9 * ergun);
   EXPECT_LT(ergun, 1e-3 * stokes());
 }

@@ -32,8 +32,9 @@ enum class Law {
   // Seed 000 eq. 30-31 as the paper writes it (Tsuji/MFIX): Ergun for eps_g < 0.8, Wen-Yu
   // with eps_g^-2.7 for eps_g >= 0.8, C_D = 0.43 for Re >= 1000. beta jumps at eps_g = 0.8.
   ErgunWenYu,
-  // Seed 001 eq. 3-4: the review's variant, eps_g^-2.65 and C_D = 0.44; eq. 3 as printed
-  // (inertial Ergun term 1.75 eps_s Re, i.e. with the eps_g of Re). Jumps at eps_g = 0.8.
+  // Seed 001 eq. 3-4: the review's variant, eps_g^-2.65 and C_D = 0.44. Its eq. 3 prints the
+  // inertial Ergun term as 1.75 eps_s Re, eps_g times Ergun's with its Re = eps_g rho |u-v|
+  // d/mu: taken as a misprint, Ergun's law (as seed 000 eq. 30) is used. Jumps at 0.8.
   ErgunWenYuReview,
   // Seed 001, text after eq. 4: the lesser of eq. 3 and eq. 4 everywhere (no jump). At low
   // Re in dilute regions Ergun is the lesser, so it does NOT reach the Stokes limit.
