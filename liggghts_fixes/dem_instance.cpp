@@ -128,6 +128,15 @@ void DemInstance::remove_particles(const std::vector<int> &tags) {
 
 void DemInstance::command(const std::string &line) { lmp_->input->one(line.c_str()); }
 
+bool DemInstance::integrates() const {
+  for (int i = 0; i < lmp_->modify->nfix; ++i) {
+    const std::string style = lmp_->modify->fix[i]->style;
+    for (const char *prefix : {"nve", "nvt", "npt", "rigid"})
+      if (style.compare(0, std::strlen(prefix), prefix) == 0) return true;
+  }
+  return false;
+}
+
 bool DemInstance::inserts_particles() const {
   for (int i = 0; i < lmp_->modify->nfix; ++i)
     if (std::strncmp(lmp_->modify->fix[i]->style, "insert/", 7) == 0) return true;

@@ -45,6 +45,9 @@ class DemInstance {
   // Remove the particles with these atom IDs from the DEM (the same list on every rank;
   // collective). Their IDs are not reused; the next run sets up again.
   void remove_particles(const std::vector<int> &tags);
+  // True when the script moves its particles (a time-integration fix: nve*, nvt*, npt*,
+  // rigid*); a frozen bed has none.
+  bool integrates() const;
   // True when the script has a particle insertion fix (style insert/*).
   bool inserts_particles() const;
   // Run one LIGGGHTS command (e.g. output set-up from the coupler).

@@ -299,6 +299,12 @@ double contactTime
 
 void contactTimeSteps(const fileName& script, const tfdem::DemInstance& dem, double impactSpeed)
 {
+    if (!dem.integrates())
+    {
+        Info<< "TFDEM coupling: the DEM script integrates no particle motion (no fix nve*):"
+            << " a frozen bed, contact time not checked" << endl;
+        return;
+    }
     const std::vector<double> lightest = smallestOfType(dem, dem.masses());
     const std::vector<double> smallest = smallestOfType(dem, dem.radii());
     const double dt = dem.time_step();
