@@ -242,7 +242,12 @@ CouplingConfig parse_coupling_config(const std::string &file, const std::string 
                                                 "transfer: per_particle");
   c.transfer.gas = c.gas;
   c.pressure_gradient_force = coupling.boolean("pressure_gradient_force", true);
-  c.viscous_force = coupling.boolean("viscous_force", false);
+  if (coupling.has("viscous_force")) {
+    coupling.boolean("viscous_force", false);
+    coupling.report("viscous_force", "not modelled: the viscous-stress force V_p div(tau) of seed 000 eq. 28 is "
+                                     "neglected, as the paper does (it is small beside drag in gas-fluidized beds); "
+                                     "remove the key");
+  }
   c.void_fraction_time_derivative = coupling.boolean("void_fraction_time_derivative", true);
   ConfigSection void_fraction = coupling.section("void_fraction");
   c.void_fraction = read_void_fraction(void_fraction);
@@ -278,7 +283,6 @@ std::string describe(const CouplingConfig &c) {
     << "  drag_law: " << drag::law_name(c.transfer.law) << "\n"
     << "  gas_velocity_at_particle: " << gas_at_particle_names()[static_cast<int>(c.transfer.gas_velocity)] << "\n"
     << "  pressure_gradient_force: " << (c.pressure_gradient_force ? "true" : "false") << "\n"
-    << "  viscous_force: " << (c.viscous_force ? "true" : "false") << "\n"
     << "  void_fraction_time_derivative: " << (c.void_fraction_time_derivative ? "true" : "false") << "\n"
     << "  void_fraction:\n    method: " << void_fraction_method_names()[static_cast<int>(c.void_fraction.method)] << "\n"
     << "    cube_factor: " << c.void_fraction.cube_factor << "\n"

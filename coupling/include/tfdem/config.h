@@ -105,7 +105,6 @@ struct CouplingConfig {
   TransferOptions transfer;       // method, drag law, gas
   VoidFractionOptions void_fraction;
   bool pressure_gradient_force = true;  // -V_p grad p of eq. 28
-  bool viscous_force = false;           // V_p div tau of eq. 28 (the paper neglects it)
   bool void_fraction_time_derivative = true;  // d(eps)/dt in gas continuity
   OutputOptions output;
 };
