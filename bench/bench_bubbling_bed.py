@@ -14,93 +14,70 @@ only adds time). A benchmark, not a test: it prints figures.
 `--interval N` runs the bed with N DEM steps per gas step (gas step N x the DEM step) instead
 of the tutorial's coupling_interval, for speed against the coupling interval.
 
-Usage: bench/bench_bubbling_bed.py [--time 0.25] [--ranks 1 2] [--interval 100] [--repeat 3]
+Usage (the tfdem package on PYTHONPATH, as scripts/tfdem-env.sh sets it):
+    . scripts/tfdem-env.sh
+    "$TFDEM_PYTHON" bench/bench_bubbling_bed.py [--time 0.25] [--ranks 1 2] [--interval 100] [--repeat 3]
 """
 import argparse
 import os
-import re
 import shutil
-import subprocess
 import sys
 
-SOURCE = os.path.abspath(os.path.join(os.path.dirname(__file__), ".."))
-BUILD = os.environ.get("TFDEM_BUILD", os.path.join(SOURCE, "build"))
-TUTORIAL = os.path.join(SOURCE, "tutorials", "bubbling_bed")
-sys.path.insert(0, os.path.join(SOURCE, "tests", "integration"))
-import tfdem_testlib  # noqa: E402
-sys.path.insert(0, os.path.join(SOURCE, "tutorials"))
-from case_copy import copy_case  # noqa: E402
+from tfdem import BUILD_DIR, TUTORIALS
+from tfdem.case import Case
+from tfdem.outputs import log_numbers
+from tfdem.run import RunError, run as run_program, write_decompose_dict
 
-
-def environment():
-    """The integration tests' environment, with bench/ on PATH for tfdem-dem-replay."""
-    env = tfdem_testlib.environment()
-    env["PATH"] = os.pathsep.join([os.path.join(BUILD, "bench"), env["PATH"]])
-    return env
+TUTORIAL = os.path.join(TUTORIALS, "bubbling_bed")
+PACKING = os.path.join(TUTORIALS, "bubbling_bed_packing")
+REPLAY = os.path.join(BUILD_DIR, "bench", "tfdem-dem-replay")
 
 
 def run(args, cwd, log, ranks=1):
-    """Run (under mpirun for ranks > 1); return its output. Stops on failure."""
-    if ranks > 1:
-        args = ["mpirun", "-np", str(ranks)] + args
-    proc = subprocess.run(args, cwd=cwd, env=environment(), stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                          text=True, errors="replace")
-    open(os.path.join(cwd, log), "w").write(proc.stdout)
-    if proc.returncode != 0:
-        sys.exit(f"'{' '.join(args)}' failed in {cwd}:\n{proc.stdout[-3000:]}")
-    return proc.stdout
-
-
-def setting(pattern, path):
-    """The first group of pattern in the file at path (a number); stops when missing."""
-    match = re.search(pattern, open(path).read(), re.M)
-    if not match:
-        sys.exit(f"{path}: no match for {pattern!r}")
-    return float(match.group(1))
+    """Run (under mpirun for ranks > 1; OpenFOAM solvers get -parallel in args) with the
+    package's environment, output to cwd/log. Stops on failure."""
+    try:
+        run_program(args, cwd, log, ranks, parallel_flag=False)
+    except RunError as e:
+        sys.exit(str(e))
+    return os.path.join(cwd, log)
 
 
 def tutorial_interval():
-    return int(setting(r"^\s*coupling_interval:\s*(\d+)", os.path.join(TUTORIAL, "coupling.yaml")))
+    return int(Case(TUTORIAL).coupling_value("dem.coupling_interval"))
 
 
 def dem_step():
-    return setting(r"^timestep\s+(\S+)", os.path.join(TUTORIAL, "in.bed"))
+    return Case(TUTORIAL).dem_time_step()
 
 
 def set_interval(case, interval):
     """coupling_interval and the gas step (interval x the DEM step) of the case."""
-    path = os.path.join(case, "coupling.yaml")
-    text = re.sub(r"(?m)^(\s*coupling_interval:\s*)\d+", rf"\g<1>{interval}", open(path).read())
-    open(path, "w").write(text)
-    path = os.path.join(case, "system", "controlDict")
-    text = re.sub(r"(?m)^deltaT .*$", f"deltaT          {interval * dem_step():.12g};", open(path).read())
-    open(path, "w").write(text)
+    case.set_coupling("dem.coupling_interval", interval)
+    case.set_control(deltaT=f"{interval * case.dem_time_step():.12g}")
 
 
-def prepare(case, end_time, ranks, interval):
-    copy_case(TUTORIAL, case, ("coupling.yaml", "in.bed"))
-    packed = os.path.join(SOURCE, "tutorials", "bubbling_bed_packing", "bed.data")
+def prepare(path, end_time, ranks, interval):
+    case = Case(TUTORIAL).copy_to(path)
+    packed = Case(PACKING).file("bed.data")
     if not os.path.exists(packed):
-        run([os.path.join(SOURCE, "tutorials", "bubbling_bed_packing", "Allrun")], case, "log.packing")
-    shutil.copy(packed, case)
-    control = os.path.join(case, "system", "controlDict")
-    text = open(control).read()
-    text = re.sub(r"(?m)^endTime .*$", f"endTime         {end_time};", text)
-    text = re.sub(r"(?m)^writeInterval .*$", f"writeInterval   {end_time};", text)
-    open(control, "w").write(text)
+        run([os.path.join(PACKING, "Allrun")], path, "log.packing")
+    shutil.copy(packed, case.file(os.path.basename(case.dem().read_data())))
+    case.set_control(endTime=end_time, writeInterval=end_time)
     set_interval(case, interval)
-    run(["blockMesh"], case, "log.blockMesh")
+    run(["blockMesh"], path, "log.blockMesh")
     if ranks > 1:
         # Gas split like LIGGGHTS' `processors * 1 1` in in.bed: side by side in x.
-        tfdem_testlib.write_decompose_dict(case, (ranks, 1, 1))
-        run(["decomposePar"], case, "log.decomposePar")
+        write_decompose_dict(path, (ranks, 1, 1))
+        run(["decomposePar"], path, "log.decomposePar")
 
 
-def number(pattern, text):
-    match = re.search(pattern, text)
-    if not match:
-        sys.exit(f"no match for {pattern!r}")
-    return [float(g) for g in match.groups()]
+def number(pattern, log):
+    """Floats of the last match of pattern in the log file; stops when missing."""
+    found = log_numbers(log, pattern)
+    if found is None:
+        sys.exit(f"{log}: no match for {pattern!r}")
+    return found
 
 
 def coupled_and_replay(case, ranks, interval, intervals):
@@ -109,8 +86,8 @@ def coupled_and_replay(case, ranks, interval, intervals):
     log = run(solver, case, "log.tfdemFoam", ranks)
     dem, mapping, forces, gas = number(r"TFDEM timing: DEM (\S+) s, locate\+map (\S+) s, forces (\S+) s, gas (\S+) s", log)
     coupled_positions = number(r"TFDEM positions: sum of x, y, z over particles = (\S+) (\S+) (\S+)", log)
-    replay_log = run(["tfdem-dem-replay", "in.bed", "forces.bin", str(interval), str(intervals)],
-                     case, "log.replay.out", ranks)
+    script = os.path.basename(Case(case).dem_script())
+    replay_log = run([REPLAY, script, "forces.bin", str(interval), str(intervals)], case, "log.replay.out", ranks)
     replay_dem = number(r"TFDEM replay: DEM (\S+) s", replay_log)[0]
     replay_positions = number(r"TFDEM positions: sum of x, y, z over particles = (\S+) (\S+) (\S+)", replay_log)
     same = max(abs(a - b) / abs(a) for a, b in zip(coupled_positions, replay_positions))
@@ -124,7 +101,7 @@ def coupled_and_replay(case, ranks, interval, intervals):
 def bench(end_time, ranks, interval, repeat):
     """Coupled and DEM-only runs alternated `repeat` times (so a drift of the machine's speed
     hits both); the ratio of the fastest of each is the figure, noise only adds time."""
-    case = os.path.join(BUILD, "bench-runs", f"bubbling_bed_np{ranks}")
+    case = os.path.join(BUILD_DIR, "bench-runs", f"bubbling_bed_np{ranks}")
     prepare(case, end_time, ranks, interval)
     intervals = round(end_time / (interval * dem_step()))
     pairs = [coupled_and_replay(case, ranks, interval, intervals) for _ in range(repeat)]

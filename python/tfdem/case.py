@@ -66,6 +66,38 @@ def vector(text):
     return tuple(float(v) for v in found.group(1).split())
 
 
+def remove_dict_entry(path, key):
+    """Remove the top-level ``key value;`` entry of an OpenFOAM dictionary (CaseError when absent)."""
+    text = _read(path)
+    text, n = re.subn(rf"(?m)^\s*{re.escape(key)}\s+[^;]*;[^\n]*\n?", "", text, count=1)
+    if n == 0:
+        raise CaseError(f"{path}: no entry '{key}'")
+    _write(path, text)
+
+
+def sub_dict(text, name, path="dictionary"):
+    """Body (between the braces) of the first sub-dictionary ``name { ... }`` of OpenFOAM text
+    (comments removed), nested braces included."""
+    text = _strip_comments(text)
+    found = re.search(rf"(?<![\w.]){re.escape(name)}\s*\{{", text)
+    if not found:
+        raise CaseError(f"{path}: no sub-dictionary '{name}'")
+    depth, start = 1, found.end()
+    for i in range(start, len(text)):
+        if text[i] == "{":
+            depth += 1
+        elif text[i] == "}":
+            depth -= 1
+            if depth == 0:
+                return text[start:i]
+    raise CaseError(f"{path}: sub-dictionary '{name}' is not closed")
+
+
+def _points(text):
+    """(x y z) tuples of a list text such as '((0 1 2) (3 4 5))'."""
+    return [tuple(float(v) for v in m.group(1).split()) for m in re.finditer(r"\(([^()]*)\)", text)]
+
+
 class Grid:
     """The uniform Cartesian grid of a blockMeshDict: origin, spacing and cell counts."""
 
@@ -92,10 +124,13 @@ def _expand_variables(text):
     return re.sub(r"\$(\w+)", lambda m: values.get(m.group(1), m.group(0)), text)
 
 
+_HEX = r"hex\s*\(([\d\s]+)\)\s*(\w*)\s*\(([\d\s]+)\)"
+
+
 def _blocks(text):
-    """[(vertex indices, (nx, ny, nz))] of a blockMeshDict's hex blocks."""
-    return [([int(v) for v in m.group(1).split()], tuple(int(n) for n in m.group(2).split()))
-            for m in re.finditer(r"hex\s*\(([\d\s]+)\)\s*\(([\d\s]+)\)", text)]
+    """[(vertex indices, (nx, ny, nz), zone name or '')] of a blockMeshDict's hex blocks."""
+    return [([int(v) for v in m.group(1).split()], tuple(int(n) for n in m.group(3).split()), m.group(2))
+            for m in re.finditer(_HEX, text)]
 
 
 def _vertices(path, text):
@@ -156,6 +191,85 @@ class Case:
     def gravity(self):
         return vector(dict_entry(self.file("constant", "g"), "value"))
 
+    def gravity_magnitude(self):
+        """|g| (m/s^2) of constant/g."""
+        return math.sqrt(sum(c * c for c in self.gravity()))
+
+    def function_body(self, function):
+        """Text (between its braces, comments removed) of the function object `function` of
+        system/controlDict."""
+        path = self.file("system", "controlDict")
+        return sub_dict(sub_dict(_read(path), "functions", path), function, path)
+
+    def function_entry(self, function, key):
+        """Text of entry `key` of the function object `function` in system/controlDict."""
+        path = self.file("system", "controlDict")
+        body = self.function_body(function)
+        found = re.search(rf"(?m)^\s*{re.escape(key)}\s+(.*?);", body, flags=re.S)
+        if not found:
+            raise CaseError(f"{path}: function '{function}' has no entry '{key}'")
+        return found.group(1).strip()
+
+    def probe_locations(self, function):
+        """[(x, y, z)] of a probes function object of system/controlDict."""
+        return _points(self.function_entry(function, "probeLocations")[1:-1])
+
+    def patch_value(self, field, patch, time="0"):
+        """The `value uniform ...` of a patch of a field file (e.g. 0/U inlet): a float or an
+        (x, y, z) tuple."""
+        path = self.file(time, field)
+        body = sub_dict(sub_dict(_read(path), "boundaryField", path), patch, path)
+        found = re.search(r"(?:^|\s)value\s+uniform\s+([^;]+);", body)
+        if not found:
+            raise CaseError(f"{path}: patch '{patch}' has no 'value uniform ...;'")
+        value = found.group(1).strip()
+        return vector(value) if value.startswith("(") else float(value)
+
+    def set_patch_value(self, field, patch, value, time="0"):
+        """Set the `value uniform ...` of a patch of a field file; value a float or a tuple."""
+        path = self.file(time, field)
+        text = _read(path)
+        start = re.search(rf"(?m)^\s*{re.escape(patch)}\s*\{{", text)
+        if not start:
+            raise CaseError(f"{path}: no patch '{patch}'")
+        depth, end = 1, start.end()
+        while depth and end < len(text):
+            depth += {"{": 1, "}": -1}.get(text[end], 0)
+            end += 1
+        end -= 1  # the patch's closing brace
+        written = f"({' '.join(f'{v:g}' for v in value)})" if isinstance(value, (tuple, list)) else f"{value:g}"
+        body, n = re.subn(r"(\bvalue\s+uniform\s+)[^;]+;", lambda m: f"{m.group(1)}{written};",
+                          text[start.end():end], count=1)
+        if n == 0:
+            raise CaseError(f"{path}: patch '{patch}' has no 'value uniform ...;'")
+        _write(path, text[:start.end()] + body + text[end:])
+
+    def porosity(self, name=None):
+        """A Darcy-Forchheimer porous zone of the case's fvOptions (constant/ or system/):
+        dict with 'zone' (its cellZone), 'd' (1/m^2) and 'f' (1/m) as (x, y, z); the first
+        explicitPorositySource unless name is given; None when the case has no fvOptions."""
+        paths = [p for p in (self.file("constant", "fvOptions"), self.file("system", "fvOptions"))
+                 if os.path.exists(p)]
+        if not paths:
+            return None
+        path = paths[0]
+        text = _strip_comments(_read(path))
+        if name is None:
+            found = re.search(r"(?m)^\s*(\w+)\s*\{\s*type\s+explicitPorositySource\s*;", text)
+            if not found:
+                raise CaseError(f"{path}: no explicitPorositySource")
+            name = found.group(1)
+        body = sub_dict(text, name, path)
+        coeffs = sub_dict(body, "DarcyForchheimerCoeffs", path)
+        zone = re.search(r"cellZone\s+(\w+)\s*;", body)
+        out = {"zone": zone.group(1) if zone else None}
+        for key in ("d", "f"):
+            found = re.search(rf"(?m)^\s*{key}\s+(\([^()]*\))\s*;", coeffs)
+            if not found:
+                raise CaseError(f"{path}: {name} has no '{key} (x y z);'")
+            out[key] = vector(found.group(1))
+        return out
+
     def grid(self):
         """The uniform grid of system/blockMeshDict (spacing of the first block; all blocks
         must share it, as the coupler requires)."""
@@ -167,7 +281,7 @@ class Case:
         blocks = _blocks(text)
         if not blocks:
             raise CaseError(f"{path}: no hex blocks")
-        first, cells = blocks[0]
+        first, cells, _ = blocks[0]
         lo = [min(points[v][a] for v in first) for a in range(3)]
         hi = [max(points[v][a] for v in first) for a in range(3)]
         spacing = [(hi[a] - lo[a]) / cells[a] for a in range(3)]
@@ -175,20 +289,43 @@ class Case:
         top = [max(p[a] for p in points) for a in range(3)]
         return Grid(origin, spacing, [round((top[a] - origin[a]) / spacing[a]) for a in range(3)])
 
+    def _mesh_points(self):
+        path = self.file("system", "blockMeshDict")
+        text = _expand_variables(_strip_comments(_read(path)))
+        scale = float(re.search(r"(?m)^\s*(?:convertToMeters|scale)\s+([^;]+);", text).group(1)) \
+            if re.search(r"(?m)^\s*(?:convertToMeters|scale)\s", text) else 1.0
+        return path, text, [tuple(scale * c for c in p) for p in _vertices(path, text)]
+
+    def mesh_bounds(self):
+        """((x, y, z) lowest, (x, y, z) highest) corner of system/blockMeshDict's vertices."""
+        _, _, points = self._mesh_points()
+        return (tuple(min(p[a] for p in points) for a in range(3)),
+                tuple(max(p[a] for p in points) for a in range(3)))
+
+    def block_bounds(self, zone):
+        """(lowest, highest) corner of the blockMeshDict block that makes cellZone `zone`."""
+        path, text, points = self._mesh_points()
+        for vertices, _, name in _blocks(text):
+            if name == zone:
+                return (tuple(min(points[v][a] for v in vertices) for a in range(3)),
+                        tuple(max(points[v][a] for v in vertices) for a in range(3)))
+        raise CaseError(f"{path}: no block of zone '{zone}'")
+
     def scale_cells(self, axis, factor):
         """Multiply every block's cell count along axis (0, 1, 2) by factor (refine the grid)."""
         path = self.file("system", "blockMeshDict")
 
         text = _read(path)
-        if re.search(r"hex\s*\([\d\s]+\)\s*\(\s*\$", text):
+        if re.search(r"hex\s*\([\d\s]+\)\s*\w*\s*\(\s*\$", text):
             raise CaseError(f"{path}: cell counts are macros; set them with set_dict_entries")
 
         def refine(m):
-            counts = [int(n) for n in m.group(2).split()]
+            counts = [int(n) for n in m.group(3).split()]
             counts[axis] = int(round(counts[axis] * factor))
-            return f"hex ({m.group(1)}) ({' '.join(map(str, counts))})"
+            zone = f"{m.group(2)} " if m.group(2) else ""
+            return f"hex ({m.group(1)}) {zone}({' '.join(map(str, counts))})"
 
-        _write(path, re.sub(r"hex\s*\(([\d\s]+)\)\s*\(([\d\s]+)\)", refine, text))
+        _write(path, re.sub(_HEX, refine, text))
 
     # coupling.yaml ------------------------------------------------------------------------
     def coupling(self):
@@ -208,9 +345,21 @@ class Case:
         missing sections are added."""
         set_yaml_value(self.file("coupling.yaml"), dotted, value)
 
+    # Particles of coupling.yaml ------------------------------------------------------------
+    def particle_properties(self):
+        """(diameter, density) of coupling.yaml's particles section."""
+        d, rho = self.coupling_value("particles.diameter"), self.coupling_value("particles.density")
+        if d is None or rho is None:
+            raise CaseError(f"{self.file('coupling.yaml')}: no particles.diameter and particles.density")
+        return float(d), float(rho)
+
     # DEM -----------------------------------------------------------------------------------
     def dem_script(self):
         return self.file(self.coupling_value("dem.script"))
+
+    def dem(self):
+        """The case's DEM script (coupling.yaml dem.script) as a DemScript."""
+        return DemScript(self.dem_script())
 
     def dem_command(self, name, script=None):
         """Words of the first `name` command of the DEM script."""
@@ -232,6 +381,111 @@ class Case:
 
     def particle_count(self):
         return len(self.particles()["id"])
+
+
+class DemScript:
+    """A LIGGGHTS input script read command by command (comments dropped). Values can name
+    the script's own variables (${name}) and be simple arithmetic $(...) of numbers."""
+
+    def __init__(self, path):
+        self.path = os.path.abspath(path)
+        self.lines = [line.split("#", 1)[0].split() for line in _read(self.path).splitlines()]
+
+    def commands(self, name):
+        """Words of every `name` command, in order."""
+        return [words for words in self.lines if words and words[0] == name]
+
+    def command(self, name, *leading):
+        """Words of the first `name` command whose next words are `leading` (e.g.
+        command('fix', 'grav')); CaseError when there is none."""
+        for words in self.commands(name):
+            if list(words[1:1 + len(leading)]) == list(leading):
+                return words
+        raise CaseError(f"{self.path}: no '{' '.join((name,) + leading)}' command")
+
+    def variables(self):
+        """{name: value text} of the script's `variable NAME equal|index|string VALUE` lines
+        (the first definition counts, as for LIGGGHTS' index variables)."""
+        out = {}
+        for words in self.commands("variable"):
+            if len(words) >= 4 and words[2] in ("equal", "index", "string") and words[1] not in out:
+                out[words[1]] = words[3].strip('"')
+        return out
+
+    def variable(self, name):
+        value = self.variables().get(name)
+        if value is None:
+            raise CaseError(f"{self.path}: no 'variable {name}'")
+        return value
+
+    def value(self, text):
+        """A number of a command: a literal, ${variable} or $(arithmetic of numbers)."""
+        variables = self.variables()
+        text = re.sub(r"\$\{(\w+)\}", lambda m: variables.get(m.group(1), m.group(0)), text)
+        text = re.sub(r"v_(\w+)", lambda m: variables.get(m.group(1), m.group(0)), text)
+        expression = re.fullmatch(r"\$\((.*)\)", text)
+        if expression:
+            text = expression.group(1)
+            if not re.fullmatch(r"[\d.eE+\-*/() ]+", text):
+                raise CaseError(f"{self.path}: cannot evaluate $({text})")
+            return float(eval(text, {"__builtins__": {}}))  # numbers and + - * / only
+        try:
+            return float(text)
+        except ValueError:
+            raise CaseError(f"{self.path}: '{text}' is not a number") from None
+
+    def time_step(self):
+        return self.value(self.command("timestep")[1])
+
+    def read_data(self):
+        """Path of the data file of the script's read_data command."""
+        return os.path.join(os.path.dirname(self.path), self.command("read_data")[1])
+
+    def gravity(self):
+        """(x, y, z) of the first `fix ID group gravity MAGNITUDE vector x y z`."""
+        for words in self.commands("fix"):
+            if len(words) >= 9 and words[3] == "gravity" and words[5] == "vector":
+                magnitude = self.value(words[4])
+                return tuple(magnitude * self.value(w) for w in words[6:9])
+        raise CaseError(f"{self.path}: no 'fix ... gravity ... vector x y z'")
+
+    def region(self, name):
+        """((x0, y0, z0), (x1, y1, z1)) of `region NAME block x0 x1 y0 y1 z0 z1`."""
+        words = self.command("region", name)
+        if len(words) < 9 or words[2] != "block":
+            raise CaseError(f"{self.path}: region '{name}' is not a block")
+        bounds = [self.value(w) for w in words[3:9]]
+        return tuple(bounds[0::2]), tuple(bounds[1::2])
+
+    def lattice(self):
+        """(spacing, (ox, oy, oz)) of the script's `lattice sc SPACING [origin ox oy oz]`."""
+        words = self.command("lattice")
+        if words[1] != "sc":
+            raise CaseError(f"{self.path}: lattice {words[1]}: only 'sc' is read")
+        origin = (0.0, 0.0, 0.0)
+        if "origin" in words:
+            k = words.index("origin")
+            origin = tuple(self.value(w) for w in words[k + 1:k + 4])
+        return self.value(words[2]), origin
+
+    def lattice_sites(self, region):
+        """Centres [(x, y, z)] that `create_atoms TYPE region REGION` puts on the script's sc
+        lattice inside a block region (sites on the region's faces count, as in LIGGGHTS)."""
+        spacing, origin = self.lattice()
+        lo, hi = self.region(region)
+        axes = []
+        for a in range(3):
+            first = math.ceil(lo[a] / spacing - origin[a] - 1e-9)
+            last = math.floor(hi[a] / spacing - origin[a] + 1e-9)
+            axes.append([(i + origin[a]) * spacing for i in range(first, last + 1)])
+        return [(x, y, z) for z in axes[2] for y in axes[1] for x in axes[0]]
+
+    def fix_file(self, fix_id):
+        """File name a fix writes (the word after `file` in `fix ID ...`), beside the script."""
+        words = self.command("fix", fix_id)
+        if "file" not in words:
+            raise CaseError(f"{self.path}: fix {fix_id} writes no file")
+        return words[words.index("file") + 1]
 
 
 def read_data_file(path):
@@ -256,6 +510,20 @@ def read_data_file(path):
         for key, w in zip(("diameter", "density", "x", "y", "z"), words[2:7]):
             out[key].append(float(w))
     return out
+
+
+def read_data_box(path):
+    """((xlo, ylo, zlo), (xhi, yhi, zhi)) of a LIGGGHTS data file's header."""
+    bounds = {}
+    for line in _read(path).splitlines():
+        words = line.split()
+        if len(words) == 4 and words[2:] in (["xlo", "xhi"], ["ylo", "yhi"], ["zlo", "zhi"]):
+            bounds[words[2][0]] = (float(words[0]), float(words[1]))
+        if words[:1] == ["Atoms"]:
+            break
+    if len(bounds) != 3:
+        raise CaseError(f"{path}: no xlo xhi, ylo yhi and zlo zhi lines")
+    return tuple(bounds[a][0] for a in "xyz"), tuple(bounds[a][1] for a in "xyz")
 
 
 def sphere_volume(d):

@@ -79,8 +79,9 @@ def particle_statistics(case_path):
 
 
 def fix_print(path):
-    """(t, [values]) rows of a LIGGGHTS `fix print` file; a time that comes again (a resumed
-    run appending) replaces the rows from it on."""
+    """(t, [values]) rows of a LIGGGHTS `fix print` file (or of a `fix ave/time` file, whose
+    first column is the step); a time that comes again (a resumed run appending) replaces the
+    rows from it on."""
     out = []
     for row in _rows(path):
         while out and out[-1][0] >= row[0]:
@@ -109,6 +110,24 @@ def dump_frames(path):
         else:
             i += 1
     return frames
+
+
+def dump_track(case_path, column, dump_id=None, atom=0):
+    """(t, value) of one atom (the `atom`-th row of each frame; sort the dump by id) in a
+    LIGGGHTS custom dump of the case's DEM script: the first `dump` command, or dump_id; t =
+    step x the script's timestep."""
+    from tfdem.case import Case
+
+    dem = Case(case_path).dem()
+    words = dem.command("dump", dump_id) if dump_id else dem.command("dump")
+    path = os.path.join(case_path, words[5])
+    dt = dem.time_step()
+    out = []
+    for step, (columns, rows) in sorted(dump_frames(path).items()):
+        if column not in columns:
+            raise OutputError(f"{path}: no column '{column}' (has {' '.join(columns)})")
+        out.append((step * dt, rows[atom][columns.index(column)]))
+    return out
 
 
 def vtk_particles(path):
@@ -174,6 +193,40 @@ def field(case_path, time_name, name):
         return [float(v) for v in body.split(None, count)[:count]]
     values = re.findall(r"\(([^()]*)\)", body)[:count]
     return [tuple(float(v) for v in value.split()) for value in values]
+
+
+def boundary_values(case_path, time_name, name, patch):
+    """Values of a patch of an ASCII OpenFOAM field (its `value` entry): a list of floats or of
+    (x, y, z); a uniform value gives a one-element list."""
+    path = os.path.join(case_path, time_name, name)
+    with open(path) as f:
+        text = f.read()
+    found = re.search(rf"\n\s*{re.escape(patch)}\s*\{{(.*?)\n\s*\}}", text, flags=re.S)
+    if not found:
+        raise OutputError(f"{path}: no patch '{patch}'")
+    body = found.group(1)
+    uniform = re.search(r"value\s+uniform\s+([^;]+);", body)
+    if uniform:
+        value = uniform.group(1).strip()
+        return [tuple(float(v) for v in value.strip("()").split())] if value.startswith("(") else [float(value)]
+    listed = re.search(r"value\s+nonuniform\s+List<(\w+)>\s*(\d+)\s*\(", body)
+    if not listed:
+        raise OutputError(f"{path}: patch '{patch}' has no value")
+    count, rest = int(listed.group(2)), body[listed.end():]
+    if listed.group(1) == "scalar":
+        return [float(v) for v in rest.replace(")", " ").split()[:count]]
+    return [tuple(float(v) for v in value.split()) for value in re.findall(r"\(([^()]*)\)", rest)[:count]]
+
+
+def latest_set(case_path, name, filename):
+    """Rows (lists of floats) of a `sets` function object's raw file at its latest time,
+    postProcessing/<name>/<time>/<filename>."""
+    paths = glob.glob(os.path.join(case_path, "postProcessing", name, "*", filename))
+    if not paths:
+        raise OutputError(f"{os.path.join(case_path, 'postProcessing', name)}: no */{filename}")
+    path = max(paths, key=lambda p: float(p.split(os.sep)[-2]))
+    return [[float(v) for v in line.split()] for line in open(path)
+            if line.strip() and not line.lstrip().startswith("#")]
 
 
 def log_numbers(path, pattern):

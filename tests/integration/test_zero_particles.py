@@ -1,8 +1,10 @@
 """With a coupling.yaml but no particles, tfdemFoam reproduces the single-phase solution.
 
 The Poiseuille tutorial runs once gas-only and once coupled to an empty LIGGGHTS domain
-(eps = 1, K = 0 everywhere); the centreline probes must agree to 1e-10 relative (solver
-tolerances are 1e-12; the two runs differ only in the order of identical operations).
+(eps = 1, K = 0 everywhere; tests/cases/zero_particles adds coupling.yaml, the DEM script and
+the 0/voidFraction a coupled case with an inlet needs); the centreline probes must agree to
+1e-10 relative (solver tolerances are 1e-12; the two runs differ only in the order of
+identical operations).
 """
 import os
 import shutil
@@ -25,8 +27,8 @@ def main():
     checks = Checks()
     gas_only = copy_case(TUTORIAL, "zero_particles_gas_only")
     coupled = copy_case(TUTORIAL, "zero_particles_coupled")
-    for name in ("coupling.yaml", "in.empty"):
-        shutil.copy(os.path.join(COUPLING, name), coupled)
+    for name in ("coupling.yaml", "in.empty", os.path.join("0", "voidFraction")):
+        shutil.copy(os.path.join(COUPLING, name), os.path.join(coupled, name))
     for case in (gas_only, coupled):
         run(["blockMesh"], case, "log.blockMesh")
         run(["tfdemFoam"], case, "log.tfdemFoam")

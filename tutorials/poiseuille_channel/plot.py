@@ -1,43 +1,46 @@
-"""Plot the computed velocity profile at x = 0.09 m against the Poiseuille parabola.
+"""Plot the computed velocity profile across the channel (the `profile` set of
+system/controlDict) against the Poiseuille parabola.
 
-Writes profile.png and prints centreline velocity and pressure drop errors.
+Writes profile.png and prints centreline velocity and pressure drop errors. The channel height
+(system/blockMeshDict), mean velocity (0/U inlet), gas (constant/transportProperties) and probe
+positions (system/controlDict) come from the case's own files.
 """
-import glob
-import os
+import re
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-H = 0.01          # channel height (m), system/blockMeshDict
-U_MEAN = 0.015    # mean velocity (m/s), 0/U
-RHO, NU = 1.2, 1.5e-5
-PROBE_DX = 0.04   # distance between the two centreline probes (m)
+from tfdem import outputs  # noqa: E402
+from tfdem.case import Case, vector  # noqa: E402
 
 
-def latest(pattern):
-    files = sorted(glob.glob(pattern), key=lambda f: float(f.split(os.sep)[-2]))
-    return files[-1]
-
-
-def main():
-    rows = [list(map(float, line.split())) for line in open(latest("postProcessing/profile/*/outletProfile_U.xy"))]
+def main(case_path="."):
+    case = Case(case_path)
+    lo, hi = case.mesh_bounds()
+    h = hi[1] - lo[1]
+    u_mean = case.patch_value("U", "inlet")[0]
+    _, mu = case.gas()
+    upstream, downstream = case.probe_locations("centreline")[:2]
+    probe_dx = downstream[0] - upstream[0]
+    rows = outputs.latest_set(case_path, "profile", "outletProfile_U.xy")
     y = [r[0] for r in rows]
     u = [r[1] for r in rows]
-    yy = [H * i / 200 for i in range(201)]
-    exact = [6 * U_MEAN * v * (H - v) / H**2 for v in yy]
-    p_rows = [line.split() for line in open(latest("postProcessing/centreline/*/p")) if not line.startswith("#")]
-    dp = float(p_rows[-1][1]) - float(p_rows[-1][2])
-    dp_exact = 12 * RHO * NU * U_MEAN * PROBE_DX / H**2
+    yy = [lo[1] + h * i / 200 for i in range(201)]
+    exact = [6 * u_mean * (v - lo[1]) * (hi[1] - v) / h**2 for v in yy]
+    _, p = outputs.probes(case_path, "centreline", "p")[-1]
+    dp = p[0] - p[1]
+    dp_exact = 12 * mu * u_mean * probe_dx / h**2
     u_c = u[len(u) // 2]
-    print(f"centreline velocity {u_c:.6g} m/s, analytic {1.5 * U_MEAN:.6g} m/s, "
-          f"error {100 * (u_c / (1.5 * U_MEAN) - 1):+.3f} %")
-    print(f"pressure drop over {PROBE_DX} m: {dp:.6g} Pa, analytic {dp_exact:.6g} Pa, "
+    print(f"centreline velocity {u_c:.6g} m/s, analytic {1.5 * u_mean:.6g} m/s, "
+          f"error {100 * (u_c / (1.5 * u_mean) - 1):+.3f} %")
+    print(f"pressure drop over {probe_dx:.6g} m: {dp:.6g} Pa, analytic {dp_exact:.6g} Pa, "
           f"error {100 * (dp / dp_exact - 1):+.3f} %")
+    x_profile = vector(re.search(r"start\s*(\([^()]*\))", case.function_body("profile")).group(1))[0]
     plt.figure(figsize=(4, 3.2))
     plt.plot(exact, [v * 1e3 for v in yy], "k-", label="analytic parabola")
-    plt.plot(u, [v * 1e3 for v in y], "o", ms=3, label="tfdemFoam, x = 9 cm")
+    plt.plot(u, [v * 1e3 for v in y], "o", ms=3, label=f"tfdemFoam, x = {100 * x_profile:.0f} cm")
     plt.xlabel("U (m/s)")
     plt.ylabel("y (mm)")
     plt.legend(fontsize=8)
