@@ -89,15 +89,23 @@ class Run:
 
     def wall_seconds(self):
         """Wall time over every segment: the last ClockTime OpenFOAM printed in each log."""
+        return self._last_over_segments(r"ClockTime = (\d+(?:\.\d*)?)")
+
+    def cpu_seconds(self):
+        """The solver's processor time over every segment (OpenFOAM's ExecutionTime): less
+        sensitive than wall time to what else runs on the machine."""
+        return self._last_over_segments(r"ExecutionTime = (\d+(?:\.\d*)?)")
+
+    def _last_over_segments(self, pattern):
         total = 0.0
         for log in self.logs():
-            clock = None
+            value = None
             with open(log, errors="replace") as f:
                 for line in f:
-                    found = re.search(r"ClockTime = (\d+(\.\d*)?)", line)
+                    found = re.search(pattern, line)
                     if found:
-                        clock = float(found.group(1))
-            total += clock or 0.0
+                        value = float(found.group(1))
+            total += value or 0.0
         return total
 
     def logs(self):
