@@ -43,7 +43,7 @@ Scene make_scene(std::size_t particles) {
 // Buffers of one coupling step, kept between steps as a simulation keeps them.
 struct StepBuffers {
   tfdem::CellWeights weights;
-  tfdem::GasFraction fraction;
+  tfdem::VoidFraction fraction;
   tfdem::TransferResult result;
   std::vector<double> u_at, eps_at;
 };
@@ -54,12 +54,12 @@ double coupling_step(const Scene &s, tfdem::VoidFractionMethod vf, tfdem::Transf
   tfdem::VoidFractionOptions vo;
   vo.method = vf;
   tfdem::compute_weights(s.grid, s.view(), vo, b.weights);
-  tfdem::map_gas_fraction(b.weights, s.view(), s.cell_volume, 0.2, b.fraction);
+  tfdem::map_void_fraction(b.weights, s.view(), s.cell_volume, 0.2, b.fraction);
   if (tm != tfdem::TransferMethod::Averaged) {
     b.u_at = tfdem::average_to_particles(b.weights, s.cell_velocity.data(), 3);
-    b.eps_at = tfdem::average_to_particles(b.weights, b.fraction.gas_fraction.data(), 1);
+    b.eps_at = tfdem::average_to_particles(b.weights, b.fraction.void_fraction.data(), 1);
   }
-  const tfdem::CellGas cells{s.cell_volume.size(), s.cell_velocity.data(), b.fraction.gas_fraction.data(),
+  const tfdem::CellGas cells{s.cell_volume.size(), s.cell_velocity.data(), b.fraction.void_fraction.data(),
                              s.cell_volume.data()};
   const tfdem::GasAtParticles at{b.u_at.data(), b.eps_at.data(), nullptr, nullptr};
   tfdem::TransferOptions to;

@@ -52,8 +52,8 @@ Foam::TfdemCoupling::TfdemCoupling
     const volVectorField& pressureGradient,
     const volVectorField& gasVelocity,
     volScalarField& voidFraction,
-    volScalarField& Ksl,
-    volVectorField& Us,
+    volScalarField& exchangeCoefficient,
+    volVectorField& solidVelocity,
     const dimensionedScalar& rho,
     const dimensionedScalar& nu,
     const uniformDimensionedVectorField& g,
@@ -64,8 +64,8 @@ Foam::TfdemCoupling::TfdemCoupling
     pressureGradient_(pressureGradient),
     gasVelocity_(gasVelocity),
     voidFraction_(voidFraction),
-    Ksl_(Ksl),
-    Us_(Us),
+    exchangeCoefficient_(exchangeCoefficient),
+    solidVelocity_(solidVelocity),
     checkpoint_(mesh.time()),
     report_(mesh.time()),
     forceRecord_(forceRecordFile)
@@ -221,7 +221,7 @@ void Foam::TfdemCoupling::mapGasFraction(const tfdem::ParticleView& view)
         stopOnEmptyGas(view);
     }
     scalarField& eps = voidFraction_.primitiveFieldRef();
-    const std::vector<double>& coreEps = core_->gas_fraction();
+    const std::vector<double>& coreEps = core_->void_fraction();
     forAll(eps, celli)
     {
         eps[celli] = coreEps[celli];
@@ -265,17 +265,17 @@ void Foam::TfdemCoupling::computeForces(const tfdem::ParticleView& view)
     const std::vector<double>& force = core_->particle_force();
     dem_->set_fluid_force(force);
 
-    scalarField& K = Ksl_.primitiveFieldRef();
-    vectorField& Us = Us_.primitiveFieldRef();
-    const std::vector<double>& coreK = core_->coefficient();
+    scalarField& K = exchangeCoefficient_.primitiveFieldRef();
+    vectorField& Us = solidVelocity_.primitiveFieldRef();
+    const std::vector<double>& coreK = core_->exchange_coefficient();
     const std::vector<double>& coreUs = core_->solid_velocity();
     forAll(K, celli)
     {
         K[celli] = coreK[celli];
         Us[celli] = vector(coreUs[3*celli], coreUs[3*celli + 1], coreUs[3*celli + 2]);
     }
-    Ksl_.correctBoundaryConditions();
-    Us_.correctBoundaryConditions();
+    exchangeCoefficient_.correctBoundaryConditions();
+    solidVelocity_.correctBoundaryConditions();
     report_.addSeconds(TfdemRunReport::Part::forces, secondsSince(start));
     forceRecord_.write(*dem_, force);
 }
@@ -322,7 +322,7 @@ void Foam::TfdemCoupling::stopOnEmptyGas(const tfdem::ParticleView& view) const
 void Foam::TfdemCoupling::gasSolved()
 {
     const vector gasReceived =
-        gSum(mesh_.V().field()*Ksl_.primitiveField()*(gasVelocity_.primitiveField() - Us_.primitiveField()));
+        gSum(mesh_.V().field()*exchangeCoefficient_.primitiveField()*(gasVelocity_.primitiveField() - solidVelocity_.primitiveField()));
     report_.momentumExchange
     (
         mesh_.time().deltaTValue(), gasReceived, particleDrag_, particleDragMagnitude_

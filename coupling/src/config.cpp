@@ -197,10 +197,10 @@ VoidFractionOptions read_void_fraction(ConfigSection &section) {
   o.cube_factor = section.number("cube_factor", 1.0, minimum_cube_factor(), 10.0);
   o.divided_points_per_diameter = static_cast<int>(section.integer("divided_points_per_diameter", 6, 2, 64));
   o.two_dimensional = section.boolean("two_dimensional", false);
-  o.gas_fraction_floor = section.number("floor", 0.0, 0.0, 1.0);
-  if (o.gas_fraction_floor >= 1.0) {
+  o.void_fraction_floor = section.number("floor", 0.0, 0.0, 1.0);
+  if (o.void_fraction_floor >= 1.0) {
     section.report("floor", "value 1 leaves no room for particles: the floor must be below 1 (e.g. 0.3)");
-    o.gas_fraction_floor = 0.0;
+    o.void_fraction_floor = 0.0;
   }
   section.reject_unknown_keys();
   return o;
@@ -288,7 +288,7 @@ std::string describe(const CouplingConfig &c) {
     << "    cube_factor: " << c.void_fraction.cube_factor << "\n"
     << "    divided_points_per_diameter: " << c.void_fraction.divided_points_per_diameter << "\n"
     << "    two_dimensional: " << (c.void_fraction.two_dimensional ? "true" : "false") << "\n"
-    << "    floor: " << c.void_fraction.gas_fraction_floor << "\n"
+    << "    floor: " << c.void_fraction.void_fraction_floor << "\n"
     << "output:\n  statistics_interval: " << c.output.statistics_interval << "\n"
     << "  particles_vtk: " << (c.output.particles_vtk ? "true" : "false") << "\n";
   return s.str();

@@ -17,8 +17,8 @@ constexpr double kNewtonRegimeRe = 1000.0;  // seed 000 eq. 31, seed 001 eq. 4
 // d/mu, which is eps_g times this (and times Ergun's pressure drop); taken as a misprint:
 // F = 150 eps_s^2/eps_g + 1.75 eps_s Re/eps_g is Ergun's law in that paper's variables.
 double ergun(const State &s, const Gas &g) {
-  const double eps_s = 1.0 - s.gas_fraction;
-  return 150.0 * eps_s * g.viscosity / (s.gas_fraction * s.diameter * s.diameter) +
+  const double eps_s = 1.0 - s.void_fraction;
+  return 150.0 * eps_s * g.viscosity / (s.void_fraction * s.diameter * s.diameter) +
          1.75 * g.density * s.slip_speed / s.diameter;
 }
 
@@ -26,18 +26,18 @@ double ergun(const State &s, const Gas &g) {
 // beta/eps_s = 3/4 C_D eps_g rho |u-v| / d * eps_g^-exponent.
 double wen_yu(const State &s, const Gas &g, double exponent, double newton_cd) {
   const double re = reynolds(s, g);
-  if (re <= 0.0) return 18.0 * g.viscosity / (s.diameter * s.diameter) * std::pow(s.gas_fraction, -exponent);
+  if (re <= 0.0) return 18.0 * g.viscosity / (s.diameter * s.diameter) * std::pow(s.void_fraction, -exponent);
   const double cd = drag_coefficient(re, newton_cd);
-  return 0.75 * cd * s.gas_fraction * g.density * s.slip_speed / s.diameter *
-         std::pow(s.gas_fraction, -exponent);
+  return 0.75 * cd * s.void_fraction * g.density * s.slip_speed / s.diameter *
+         std::pow(s.void_fraction, -exponent);
 }
 
 double ergun_wen_yu(const State &s, const Gas &g) {
-  return s.gas_fraction < kDenseDiluteSwitch ? ergun(s, g) : wen_yu(s, g, 2.7, 0.43);
+  return s.void_fraction < kDenseDiluteSwitch ? ergun(s, g) : wen_yu(s, g, 2.7, 0.43);
 }
 
 double ergun_wen_yu_review(const State &s, const Gas &g) {
-  return s.gas_fraction < kDenseDiluteSwitch ? ergun(s, g) : wen_yu(s, g, 2.65, 0.44);
+  return s.void_fraction < kDenseDiluteSwitch ? ergun(s, g) : wen_yu(s, g, 2.65, 0.44);
 }
 
 double min_ergun_wen_yu(const State &s, const Gas &g) {
@@ -47,7 +47,7 @@ double min_ergun_wen_yu(const State &s, const Gas &g) {
 // Seed 001 eq. 5: F = A eps_s^2/eps_g + B eps_s Re, divided by eps_s. For eps_g > 0.6,
 // A = 18 eps_g^3 F0 / eps_s (F0: Hill et al.'s low-Re correction), so A eps_s/eps_g = 18 eps_g^2 F0.
 double hill_koch_ladd(const State &s, const Gas &g) {
-  const double eps_g = s.gas_fraction, eps_s = 1.0 - eps_g;
+  const double eps_g = s.void_fraction, eps_s = 1.0 - eps_g;
   double viscous;  // A eps_s / eps_g
   if (eps_g < 0.6) {
     viscous = 180.0 * eps_s / eps_g;
@@ -63,7 +63,7 @@ double hill_koch_ladd(const State &s, const Gas &g) {
 
 // Seed 001 eq. 6: F = A eps_s^2/eps_g + B eps_s Re, divided by eps_s.
 double beetstra(const State &s, const Gas &g) {
-  const double eps_g = s.gas_fraction, eps_s = 1.0 - eps_g;
+  const double eps_g = s.void_fraction, eps_s = 1.0 - eps_g;
   const double re = reynolds(s, g);
   // A eps_s / eps_g with A = 180 + 18 eps_g^4 / eps_s (1 + 1.5 sqrt(eps_s))
   const double viscous = (180.0 * eps_s + 18.0 * std::pow(eps_g, 4) * (1.0 + 1.5 * std::sqrt(eps_s))) / eps_g;
@@ -77,7 +77,7 @@ double beetstra(const State &s, const Gas &g) {
 }
 
 double di_felice(const State &s, const Gas &g) {
-  const double eps_g = s.gas_fraction;
+  const double eps_g = s.void_fraction;
   const double re = reynolds(s, g);
   if (re <= 0.0) {  // limit Re -> 0: C_D -> 4.8^2/Re, chi -> 3.7
     return 0.75 * 4.8 * 4.8 * g.viscosity / (s.diameter * s.diameter) * eps_g * std::pow(eps_g, -3.7);
@@ -90,7 +90,7 @@ double di_felice(const State &s, const Gas &g) {
 }
 
 double koch_hill(const State &s, const Gas &g) {
-  const double eps_g = s.gas_fraction, eps_s = 1.0 - eps_g;
+  const double eps_g = s.void_fraction, eps_s = 1.0 - eps_g;
   double f0;
   if (eps_s < 0.4) {
     const double log_term = eps_s > 0.0 ? 135.0 / 64.0 * eps_s * std::log(eps_s) : 0.0;
@@ -120,8 +120,8 @@ Closure closure(Law law) {
 }
 
 void check_state(const State &s, const Gas &g) {
-  if (!(s.gas_fraction > 0.0 && s.gas_fraction <= 1.0))
-    throw std::invalid_argument("drag: gas fraction must be in (0, 1], got " + std::to_string(s.gas_fraction));
+  if (!(s.void_fraction > 0.0 && s.void_fraction <= 1.0))
+    throw std::invalid_argument("drag: gas fraction must be in (0, 1], got " + std::to_string(s.void_fraction));
   if (!(s.diameter > 0.0)) throw std::invalid_argument("drag: diameter must be > 0");
   if (!(s.slip_speed >= 0.0)) throw std::invalid_argument("drag: slip speed must be >= 0");
   if (!(g.density > 0.0 && g.viscosity > 0.0))
@@ -144,7 +144,7 @@ Law law_from_name(const std::string &name) {
 const std::string &law_name(Law law) { return law_names().at(static_cast<std::size_t>(law)); }
 
 double reynolds(const State &state, const Gas &gas) {
-  return state.gas_fraction * gas.density * state.slip_speed * state.diameter / gas.viscosity;
+  return state.void_fraction * gas.density * state.slip_speed * state.diameter / gas.viscosity;
 }
 
 double drag_coefficient(double reynolds_number, double newton_value) {
@@ -159,7 +159,7 @@ double beta_per_solid_fraction(Law law, const State &state, const Gas &gas) {
 }
 
 double beta(Law law, const State &state, const Gas &gas) {
-  return (1.0 - state.gas_fraction) * beta_per_solid_fraction(law, state, gas);
+  return (1.0 - state.void_fraction) * beta_per_solid_fraction(law, state, gas);
 }
 
 double stokes_beta_per_solid_fraction(double diameter, const Gas &gas) {

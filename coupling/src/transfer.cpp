@@ -18,7 +18,7 @@ void averaged_particle_drag(const CellWeights &w, const ParticleView &p, const C
     const double v = sphere_volume(p.diameter[i]);
     for (std::size_t k = w.offsets[i]; k < w.offsets[i + 1]; ++k) {
       const int c = w.cells[k];
-      const double share = w.weights[k] * v / cells.solid_volume[c] * gas.volume[c] * cells.coefficient[c];
+      const double share = w.weights[k] * v / cells.solid_volume[c] * gas.volume[c] * cells.exchange_coefficient[c];
       for (int a = 0; a < 3; ++a)
         r.particle_drag[3 * i + a] += share * (gas.velocity[3 * c + a] - cells.solid_velocity[3 * c + a]);
     }
@@ -28,15 +28,15 @@ void averaged_particle_drag(const CellWeights &w, const ParticleView &p, const C
 // Per-particle drag (eq. 29): V_i beta_i / eps_s,i (u_g,i - v_i); returns V_i beta_i/eps_s,i per particle.
 std::vector<double> per_particle_drag(const ParticleView &p, const GasAtParticles &g, const TransferOptions &o,
                                       TransferResult &r) {
-  std::vector<double> coefficient(p.count);
+  std::vector<double> exchange_coefficient(p.count);
   for (std::size_t i = 0; i < p.count; ++i) {
     double slip[3];
     for (int a = 0; a < 3; ++a) slip[a] = g.velocity[3 * i + a] - p.velocity[3 * i + a];
     const double d = p.diameter[i];
-    coefficient[i] = sphere_volume(d) * drag::beta_per_solid_fraction(o.law, {g.gas_fraction[i], d, norm3(slip)}, o.gas);
-    for (int a = 0; a < 3; ++a) r.particle_drag[3 * i + a] = coefficient[i] * slip[a];
+    exchange_coefficient[i] = sphere_volume(d) * drag::beta_per_solid_fraction(o.law, {g.void_fraction[i], d, norm3(slip)}, o.gas);
+    for (int a = 0; a < 3; ++a) r.particle_drag[3 * i + a] = exchange_coefficient[i] * slip[a];
   }
-  return coefficient;
+  return exchange_coefficient;
 }
 
 // Fluid force of eq. 28 and the particle part of the momentum bookkeeping.
@@ -88,21 +88,21 @@ void accumulate_solid_sums(const CellWeights &w, const ParticleView &p, std::siz
   }
 }
 
-void map_gas_fraction_from_sums(const std::vector<double> &sums, const std::vector<double> &cell_volume,
-                                double floor, GasFraction &out) {
+void map_void_fraction_from_sums(const std::vector<double> &sums, const std::vector<double> &cell_volume,
+                                double floor, VoidFraction &out) {
   const std::size_t n = cell_volume.size();
   if (sums.size() != kSolidSumComponents * n)
-    throw std::invalid_argument("map_gas_fraction_from_sums: sums are for a different number of cells");
+    throw std::invalid_argument("map_void_fraction_from_sums: sums are for a different number of cells");
   out.solid_volume.resize(n);
   for (std::size_t c = 0; c < n; ++c) out.solid_volume[c] = sums[kSolidSumComponents * c];
-  gas_fraction_from_solid_volume(cell_volume, floor, out);
+  void_fraction_from_solid_volume(cell_volume, floor, out);
 }
 
 void averaged_cell_drag(const std::vector<double> &sums, const CellGas &cells, const TransferOptions &o,
-                        double *coefficient, double *solid_velocity) {
+                        double *exchange_coefficient, double *solid_velocity) {
   for (std::size_t c = 0; c < cells.cell_count; ++c) {
     const double *s = &sums[kSolidSumComponents * c];
-    coefficient[c] = 0.0;
+    exchange_coefficient[c] = 0.0;
     for (int a = 0; a < 3; ++a) solid_velocity[3 * c + a] = 0.0;
     if (s[0] <= 0.0) continue;
     double slip[3];
@@ -111,7 +111,7 @@ void averaged_cell_drag(const std::vector<double> &sums, const CellGas &cells, c
       slip[a] = cells.velocity[3 * c + a] - solid_velocity[3 * c + a];
     }
     const double sauter = s[4] / s[5];
-    coefficient[c] = drag::beta(o.law, {cells.gas_fraction[c], sauter, norm3(slip)}, o.gas);
+    exchange_coefficient[c] = drag::beta(o.law, {cells.void_fraction[c], sauter, norm3(slip)}, o.gas);
   }
 }
 
@@ -121,46 +121,46 @@ std::vector<double> particle_drag_and_force(const CellWeights &weights, const Pa
   if (weights.particle_count() != particles.count)
     throw std::invalid_argument("transfer: weights are for a different number of particles");
   r.particle_drag.assign(3 * particles.count, 0.0);
-  std::vector<double> coefficient;
+  std::vector<double> exchange_coefficient;
   if (options.method == TransferMethod::Averaged)
     averaged_particle_drag(weights, particles, cells, r);
   else
-    coefficient = per_particle_drag(particles, at_particles, options, r);
+    exchange_coefficient = per_particle_drag(particles, at_particles, options, r);
   particle_force(particles, at_particles, r);
-  return coefficient;
+  return exchange_coefficient;
 }
 
-void accumulate_conservative_sums(const CellWeights &w, const std::vector<double> &particle_coefficient,
+void accumulate_conservative_sums(const CellWeights &w, const std::vector<double> &particle_exchange_coefficient,
                                   const std::vector<double> &particle_drag, std::size_t cell_count,
                                   std::vector<double> &sums) {
   constexpr int n = kConservativeSumComponents;
   sums.assign(n * cell_count, 0.0);
-  for (std::size_t i = 0; i < particle_coefficient.size(); ++i)
+  for (std::size_t i = 0; i < particle_exchange_coefficient.size(); ++i)
     for (std::size_t k = w.offsets[i]; k < w.offsets[i + 1]; ++k) {
       double *s = &sums[n * w.cells[k]];
-      s[0] += w.weights[k] * particle_coefficient[i];
+      s[0] += w.weights[k] * particle_exchange_coefficient[i];
       for (int a = 0; a < 3; ++a) s[1 + a] += w.weights[k] * particle_drag[3 * i + a];
     }
 }
 
-void conservative_cell_drag(const std::vector<double> &sums, const CellGas &cells, double *coefficient,
+void conservative_cell_drag(const std::vector<double> &sums, const CellGas &cells, double *exchange_coefficient,
                             double *solid_velocity) {
   for (std::size_t c = 0; c < cells.cell_count; ++c) {
     const double *s = &sums[kConservativeSumComponents * c];
     const double total = s[0];  // sum of V_i beta_i/eps_s,i shares (N s/m)
-    coefficient[c] = 0.0;
+    exchange_coefficient[c] = 0.0;
     for (int a = 0; a < 3; ++a) solid_velocity[3 * c + a] = 0.0;
     if (total <= 0.0) continue;
-    coefficient[c] = total / cells.volume[c];
+    exchange_coefficient[c] = total / cells.volume[c];
     for (int a = 0; a < 3; ++a) solid_velocity[3 * c + a] = cells.velocity[3 * c + a] - s[1 + a] / total;
   }
 }
 
-std::array<double, 3> gas_drag_sink(const CellGas &cells, const double *coefficient, const double *solid_velocity) {
+std::array<double, 3> gas_drag_sink(const CellGas &cells, const double *exchange_coefficient, const double *solid_velocity) {
   std::array<double, 3> sink{0.0, 0.0, 0.0};
   for (std::size_t c = 0; c < cells.cell_count; ++c)
     for (int a = 0; a < 3; ++a)
-      sink[a] += cells.volume[c] * coefficient[c] * (cells.velocity[3 * c + a] - solid_velocity[3 * c + a]);
+      sink[a] += cells.volume[c] * exchange_coefficient[c] * (cells.velocity[3 * c + a] - solid_velocity[3 * c + a]);
   return sink;
 }
 
@@ -169,22 +169,22 @@ void transfer(const CellWeights &weights, const ParticleView &particles, const C
   if (weights.particle_count() != particles.count)
     throw std::invalid_argument("transfer: weights are for a different number of particles");
   const std::size_t n = cells.cell_count;
-  r.cell_coefficient.assign(n, 0.0);
+  r.cell_exchange_coefficient.assign(n, 0.0);
   r.cell_solid_velocity.assign(3 * n, 0.0);
   std::vector<double> sums;
   accumulate_solid_sums(weights, particles, n, sums);
   const bool conservative = options.method == TransferMethod::PerParticleConservative;
-  if (!conservative) averaged_cell_drag(sums, cells, options, r.cell_coefficient.data(), r.cell_solid_velocity.data());
+  if (!conservative) averaged_cell_drag(sums, cells, options, r.cell_exchange_coefficient.data(), r.cell_solid_velocity.data());
   std::vector<double> solid_volume(n);
   for (std::size_t c = 0; c < n; ++c) solid_volume[c] = sums[kSolidSumComponents * c];
-  const CellSolidsState state{cells, solid_volume.data(), r.cell_coefficient.data(), r.cell_solid_velocity.data()};
-  const std::vector<double> coefficient =
+  const CellSolidsState state{cells, solid_volume.data(), r.cell_exchange_coefficient.data(), r.cell_solid_velocity.data()};
+  const std::vector<double> exchange_coefficient =
       particle_drag_and_force(weights, particles, state, at_particles, options, r);
   if (conservative) {
-    accumulate_conservative_sums(weights, coefficient, r.particle_drag, n, sums);
-    conservative_cell_drag(sums, cells, r.cell_coefficient.data(), r.cell_solid_velocity.data());
+    accumulate_conservative_sums(weights, exchange_coefficient, r.particle_drag, n, sums);
+    conservative_cell_drag(sums, cells, r.cell_exchange_coefficient.data(), r.cell_solid_velocity.data());
   }
-  const std::array<double, 3> sink = gas_drag_sink(cells, r.cell_coefficient.data(), r.cell_solid_velocity.data());
+  const std::array<double, 3> sink = gas_drag_sink(cells, r.cell_exchange_coefficient.data(), r.cell_solid_velocity.data());
   for (int a = 0; a < 3; ++a) r.momentum_imbalance[a] -= sink[a];
 }
 

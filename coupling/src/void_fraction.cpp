@@ -209,13 +209,13 @@ CellWeights centroid_weights(const int *cell_of_particle, std::size_t count) {
   return w;
 }
 
-void gas_fraction_from_solid_volume(const std::vector<double> &cell_volume, double floor, GasFraction &out) {
+void void_fraction_from_solid_volume(const std::vector<double> &cell_volume, double floor, VoidFraction &out) {
   if (!(floor >= 0.0 && floor < 1.0))
     throw std::invalid_argument("gas fraction floor must be in [0, 1), got " + std::to_string(floor));
   out.floored_cells = 0;
   out.lowest_unfloored = 1.0;
   out.lowest_cell = -1;
-  out.gas_fraction.resize(cell_volume.size());
+  out.void_fraction.resize(cell_volume.size());
   for (std::size_t c = 0; c < cell_volume.size(); ++c) {
     const double eps = 1.0 - out.solid_volume[c] / cell_volume[c];
     if (eps < out.lowest_unfloored) {
@@ -223,19 +223,19 @@ void gas_fraction_from_solid_volume(const std::vector<double> &cell_volume, doub
       out.lowest_cell = static_cast<int>(c);
     }
     if (eps < floor) ++out.floored_cells;
-    out.gas_fraction[c] = std::max(eps, floor);
+    out.void_fraction[c] = std::max(eps, floor);
   }
 }
 
-void map_gas_fraction(const CellWeights &weights, const ParticleView &particles,
-                      const std::vector<double> &cell_volume, double floor, GasFraction &out) {
+void map_void_fraction(const CellWeights &weights, const ParticleView &particles,
+                      const std::vector<double> &cell_volume, double floor, VoidFraction &out) {
   out.solid_volume.assign(cell_volume.size(), 0.0);
   for (std::size_t p = 0; p < particles.count; ++p) {
     const double volume = sphere_volume(particles.diameter[p]);
     for (std::size_t k = weights.offsets[p]; k < weights.offsets[p + 1]; ++k)
       out.solid_volume[weights.cells[k]] += weights.weights[k] * volume;
   }
-  gas_fraction_from_solid_volume(cell_volume, floor, out);
+  void_fraction_from_solid_volume(cell_volume, floor, out);
 }
 
 std::vector<int> compact_cells(CellWeights &weights, std::vector<int> &scratch) {
@@ -256,10 +256,10 @@ std::vector<int> compact_cells(CellWeights &weights, std::vector<int> &scratch) 
   return original;
 }
 
-GasFraction map_gas_fraction(const CellWeights &weights, const ParticleView &particles,
+VoidFraction map_void_fraction(const CellWeights &weights, const ParticleView &particles,
                              const std::vector<double> &cell_volume, double floor) {
-  GasFraction out;
-  map_gas_fraction(weights, particles, cell_volume, floor, out);
+  VoidFraction out;
+  map_void_fraction(weights, particles, cell_volume, floor, out);
   return out;
 }
 

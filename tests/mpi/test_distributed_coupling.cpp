@@ -102,21 +102,21 @@ class DistributedCouplingTest : public ::testing::TestWithParam<Case> {};
 
 // Serial reference: the core on one rank with all particles and the whole grid.
 struct Reference {
-  GasFraction fraction;
+  VoidFraction fraction;
   TransferResult result;
 };
 
 Reference serial(const Bed &b, const VoidFractionOptions &vf, const TransferOptions &to) {
   Reference ref;
   const CellWeights w = compute_weights(b.grid, b.view(), vf);
-  ref.fraction = map_gas_fraction(w, b.view(), b.cell_volume, vf.gas_fraction_floor);
+  ref.fraction = map_void_fraction(w, b.view(), b.cell_volume, vf.void_fraction_floor);
   std::vector<double> u_at = average_to_particles(w, b.cell_velocity.data(), 3);
   if (to.gas_velocity == GasAtParticle::Interpolated)  // trilinear from the whole grid's field
     for (std::size_t i = 0; i < b.diameter.size(); ++i)
       interpolate(b.grid, b.cell_velocity.data(), 3, &b.position[3 * i], &u_at[3 * i]);
-  const std::vector<double> eps_at = average_to_particles(w, ref.fraction.gas_fraction.data(), 1);
+  const std::vector<double> eps_at = average_to_particles(w, ref.fraction.void_fraction.data(), 1);
   const std::vector<double> grad_at = average_to_particles(w, b.cell_gradient.data(), 3);
-  const CellGas cells{b.cell_volume.size(), b.cell_velocity.data(), ref.fraction.gas_fraction.data(),
+  const CellGas cells{b.cell_volume.size(), b.cell_velocity.data(), ref.fraction.void_fraction.data(),
                       b.cell_volume.data()};
   transfer(w, b.view(), cells, {u_at.data(), eps_at.data(), grad_at.data(), nullptr}, to, ref.result);
   return ref;
@@ -170,9 +170,9 @@ TEST_P(DistributedCouplingTest, EqualsSerialCore) {
   const double eps_tolerance = 1e-13, force_tolerance = 1e-12;  // round-off of reordered sums
   for (std::size_t l = 0; l < owned.size(); ++l) {
     const int g = owned[l];
-    EXPECT_NEAR(coupling.gas_fraction()[l], ref.fraction.gas_fraction[g], eps_tolerance) << "cell " << g;
-    const double k_scale = std::max(1.0, std::abs(ref.result.cell_coefficient[g]));
-    EXPECT_LT(relative(coupling.coefficient()[l], ref.result.cell_coefficient[g], k_scale), force_tolerance);
+    EXPECT_NEAR(coupling.void_fraction()[l], ref.fraction.void_fraction[g], eps_tolerance) << "cell " << g;
+    const double k_scale = std::max(1.0, std::abs(ref.result.cell_exchange_coefficient[g]));
+    EXPECT_LT(relative(coupling.exchange_coefficient()[l], ref.result.cell_exchange_coefficient[g], k_scale), force_tolerance);
     for (int a = 0; a < 3; ++a)
       EXPECT_NEAR(coupling.solid_velocity()[3 * l + a], ref.result.cell_solid_velocity[3 * g + a], 1e-12);
   }

@@ -61,7 +61,7 @@ TEST(Config, ValidFileGivesTypedValues) {
   EXPECT_EQ(c.void_fraction.method, VoidFractionMethod::PorousCube);
   EXPECT_DOUBLE_EQ(c.void_fraction.cube_factor, 1.2);
   EXPECT_TRUE(c.void_fraction.two_dimensional);
-  EXPECT_DOUBLE_EQ(c.void_fraction.gas_fraction_floor, 0.3);
+  EXPECT_DOUBLE_EQ(c.void_fraction.void_fraction_floor, 0.3);
   EXPECT_TRUE(c.pressure_gradient_force);
 }
 

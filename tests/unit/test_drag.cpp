@@ -51,21 +51,21 @@ TEST(Drag, StokesDragBalancesWeightAtStokesTerminalVelocity) {
 TEST(Drag, HandComputedValuesAtGeneralStates) {
   struct Point {
     Law law;
-    double gas_fraction, slip, beta;
+    double void_fraction, slip, beta;
   };
   for (const Point &p : {Point{Law::ErgunWenYuReview, 0.45, 0.8, 660.0}, Point{Law::MinErgunWenYu, 0.45, 0.8, 660.0},
                          Point{Law::HillKochLadd, 0.5, 0.8, 457.1448}, Point{Law::HillKochLadd, 0.7, 0.8, 167.603904789},
                          Point{Law::KochHill, 0.7, 0.8, 167.556884381}, Point{Law::KochHill, 0.5, 0.8, 456.9912},
                          Point{Law::DiFelice, 0.7, 0.8, 163.463605405}, Point{Law::DiFelice, 0.45, 0.3, 372.452759349}})
-    EXPECT_NEAR(beta(p.law, {p.gas_fraction, kD, p.slip}, kAir), p.beta, 1e-9 * p.beta)
-        << law_name(p.law) << " at eps_g " << p.gas_fraction;
+    EXPECT_NEAR(beta(p.law, {p.void_fraction, kD, p.slip}, kAir), p.beta, 1e-9 * p.beta)
+        << law_name(p.law) << " at eps_g " << p.void_fraction;
 }
 
 // Documented: min(Ergun, Wen-Yu) takes Ergun in the dilute low-Re limit, far below Stokes.
 TEST(Drag, MinErgunWenYuMissesStokesLimitAsDocumented) {
   const State s = stokes_state();
-  const double eps_s = 1.0 - s.gas_fraction;
-  const double ergun = 150.0 * eps_s * kAir.viscosity / (s.gas_fraction * kD * kD) + 1.75 * kAir.density * s.slip_speed / kD;
+  const double eps_s = 1.0 - s.void_fraction;
+  const double ergun = 150.0 * eps_s * kAir.viscosity / (s.void_fraction * kD * kD) + 1.75 * kAir.density * s.slip_speed / kD;
   EXPECT_NEAR(beta_per_solid_fraction(Law::MinErgunWenYu, s, kAir), ergun, 1e-9 * ergun);
   EXPECT_LT(ergun, 1e-3 * stokes());
 }

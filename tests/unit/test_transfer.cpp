@@ -51,7 +51,7 @@ Bed make_bed(bool same_velocity_per_cell, unsigned seed, bool polydisperse = tru
 
 struct Mapped {
   CellWeights weights;
-  GasFraction fraction;
+  VoidFraction fraction;
   std::vector<double> gas_velocity_at_particles, gas_fraction_at_particles;
 };
 
@@ -61,15 +61,15 @@ Mapped map(const Bed &b, VoidFractionMethod method) {
   o.two_dimensional = true;
   Mapped m;
   m.weights = compute_weights(b.grid, b.view(), o);
-  m.fraction = map_gas_fraction(m.weights, b.view(), b.cell_volume, 0.0);
+  m.fraction = map_void_fraction(m.weights, b.view(), b.cell_volume, 0.0);
   m.gas_velocity_at_particles = average_to_particles(m.weights, b.cell_velocity.data(), 3);
-  m.gas_fraction_at_particles = average_to_particles(m.weights, m.fraction.gas_fraction.data(), 1);
+  m.gas_fraction_at_particles = average_to_particles(m.weights, m.fraction.void_fraction.data(), 1);
   return m;
 }
 
 TransferResult run(const Bed &b, const Mapped &m, TransferMethod method, const double *grad_p = nullptr) {
   const CellGas cells{static_cast<std::size_t>(b.grid.cell_count()), b.cell_velocity.data(),
-                      m.fraction.gas_fraction.data(), b.cell_volume.data()};
+                      m.fraction.void_fraction.data(), b.cell_volume.data()};
   const GasAtParticles at{m.gas_velocity_at_particles.data(), m.gas_fraction_at_particles.data(), grad_p, nullptr};
   TransferOptions o;
   o.method = method;
@@ -145,7 +145,7 @@ TEST(Transfer, AveragedGasSideUsesEquation35MeanVelocity) {
   const double bb = 0.31 * (1.0 / eps + 3.0 * eps * es + 8.4 * std::pow(re, -0.343)) /
                     (1.0 + std::pow(10.0, 3.0 * es) * std::pow(re, 2.0 * eps - 2.5));
   const double beetstra = kAir.viscosity / (sauter * sauter) * (a * es * es / eps + bb * es * re);
-  EXPECT_NEAR(r.cell_coefficient[0], beetstra, 1e-12 * beetstra);
+  EXPECT_NEAR(r.cell_exchange_coefficient[0], beetstra, 1e-12 * beetstra);
   // each particle gets the same drag per unit volume
   EXPECT_NEAR(r.particle_drag[0] / v1, r.particle_drag[3] / v2, 1e-9 * std::abs(r.particle_drag[3] / v2));
 }
@@ -178,7 +178,7 @@ TEST(Transfer, LoneParticleDragFollowsEquation29) {
   b.cell_velocity = {0.0, 0.0, 0.0};
   b.cell_volume = {1e-3};
   const Mapped m = map(b, VoidFractionMethod::Centroid);
-  const CellGas cells{1, b.cell_velocity.data(), m.fraction.gas_fraction.data(), b.cell_volume.data()};
+  const CellGas cells{1, b.cell_velocity.data(), m.fraction.void_fraction.data(), b.cell_volume.data()};
   const GasAtParticles at{m.gas_velocity_at_particles.data(), m.gas_fraction_at_particles.data(), nullptr, nullptr};
   TransferOptions o;
   o.method = TransferMethod::PerParticle;

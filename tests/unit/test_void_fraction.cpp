@@ -58,9 +58,9 @@ double total_particle_volume(const Cloud &c) {
   return v;
 }
 
-double mapped_solid_volume(const GasFraction &f, const std::vector<double> &cell_volume) {
+double mapped_solid_volume(const VoidFraction &f, const std::vector<double> &cell_volume) {
   double v = 0.0;
-  for (std::size_t i = 0; i < cell_volume.size(); ++i) v += (1.0 - f.gas_fraction[i]) * cell_volume[i];
+  for (std::size_t i = 0; i < cell_volume.size(); ++i) v += (1.0 - f.void_fraction[i]) * cell_volume[i];
   return v;
 }
 
@@ -88,7 +88,7 @@ TEST(VoidFraction, MappedVolumeEqualsParticleVolumeForEveryMethod3D) {
                                    static_cast<int>(0.04 / cell));
       const Cloud c = lattice_cloud(g, 0.0045, 0.0015, 0.004, false, 7);
       const auto vol = cell_volumes(g, false, 0.0);
-      const GasFraction f = map_gas_fraction(compute_weights(g, c.view(), options(m, false, 1.2)), c.view(), vol, 0.0);
+      const VoidFraction f = map_void_fraction(compute_weights(g, c.view(), options(m, false, 1.2)), c.view(), vol, 0.0);
       const double solid = std::accumulate(f.solid_volume.begin(), f.solid_volume.end(), 0.0);
       EXPECT_NEAR(solid / total_particle_volume(c), 1.0, 1e-12) << name(m) << ", cell " << cell;
       if (m != VoidFractionMethod::PorousCube && cell < 0.004) {
@@ -109,7 +109,7 @@ TEST(VoidFraction, MappedVolumeEqualsParticleVolumeUnderTwoDimensionalRule) {
       const CartesianGrid g = grid(cell, cell, dp, static_cast<int>(0.15 / cell), static_cast<int>(0.1 / cell), 1);
       const Cloud c = lattice_cloud(g, 0.003, dp, dp, true, 11);
       const auto vol = cell_volumes(g, true, dp);
-      const GasFraction f = map_gas_fraction(compute_weights(g, c.view(), options(m, true, 0.9)), c.view(), vol, 0.0);
+      const VoidFraction f = map_void_fraction(compute_weights(g, c.view(), options(m, true, 0.9)), c.view(), vol, 0.0);
       const double solid = std::accumulate(f.solid_volume.begin(), f.solid_volume.end(), 0.0);
       EXPECT_NEAR(solid / total_particle_volume(c), 1.0, 1e-12) << name(m) << ", cell " << cell;
       EXPECT_EQ(f.floored_cells, 0u) << name(m) << ", cell " << cell;
@@ -124,9 +124,9 @@ TEST(VoidFraction, CentroidSingleParticle) {
   Cloud c;
   c.add(0.015, 0.012, 0.018, 0.004);
   const auto vol = cell_volumes(g, false, 0.0);
-  const GasFraction f = map_gas_fraction(compute_weights(g, c.view(), options(VoidFractionMethod::Centroid)), c.view(), vol, 0.0);
-  EXPECT_DOUBLE_EQ(f.gas_fraction[g.flat(1, 1, 1)], 1.0 - sphere_volume(0.004) / 1e-6);
-  EXPECT_EQ(f.gas_fraction[g.flat(0, 0, 0)], 1.0);
+  const VoidFraction f = map_void_fraction(compute_weights(g, c.view(), options(VoidFractionMethod::Centroid)), c.view(), vol, 0.0);
+  EXPECT_DOUBLE_EQ(f.void_fraction[g.flat(1, 1, 1)], 1.0 - sphere_volume(0.004) / 1e-6);
+  EXPECT_EQ(f.void_fraction[g.flat(0, 0, 0)], 1.0);
 }
 
 // Seed 001 eq. 36-37: a cube inside one cell puts all of V_p there; a 2-D cube centred on a
@@ -175,12 +175,12 @@ TEST(VoidFraction, FloorIsAppliedAndCounted) {
   Cloud c;
   for (int i = 0; i < 3; ++i) c.add(0.0015, 0.0015, 0.0015, 0.0025);  // eps_s = 3 V_p / V_cell = 0.91
   const auto vol = cell_volumes(g, false, 0.0);
-  const GasFraction f = map_gas_fraction(compute_weights(g, c.view(), options(VoidFractionMethod::Centroid)), c.view(), vol, 0.3);
+  const VoidFraction f = map_void_fraction(compute_weights(g, c.view(), options(VoidFractionMethod::Centroid)), c.view(), vol, 0.3);
   EXPECT_EQ(f.floored_cells, 1u);
-  EXPECT_DOUBLE_EQ(f.gas_fraction[0], 0.3);
+  EXPECT_DOUBLE_EQ(f.void_fraction[0], 0.3);
   EXPECT_DOUBLE_EQ(f.lowest_unfloored, 1.0 - 3.0 * sphere_volume(0.0025) / 2.7e-8);
-  EXPECT_DOUBLE_EQ(f.gas_fraction[1], 1.0);
-  EXPECT_THROW(map_gas_fraction(compute_weights(g, c.view(), options(VoidFractionMethod::Centroid)), c.view(), vol, 1.0),
+  EXPECT_DOUBLE_EQ(f.void_fraction[1], 1.0);
+  EXPECT_THROW(map_void_fraction(compute_weights(g, c.view(), options(VoidFractionMethod::Centroid)), c.view(), vol, 1.0),
                std::invalid_argument);
 }
 

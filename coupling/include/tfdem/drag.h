@@ -23,7 +23,7 @@ struct Gas {
 
 // Local state seen by one particle (or a cell's mean particle).
 struct State {
-  double gas_fraction;  // eps_g, in (0, 1]
+  double void_fraction;  // eps_g, in (0, 1]
   double diameter;      // d_p (m)
   double slip_speed;    // |u_g - v_p| (m/s)
 };

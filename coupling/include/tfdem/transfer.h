@@ -41,14 +41,14 @@ TransferMethod transfer_method_from_name(const std::string &name);
 struct CellGas {
   std::size_t cell_count = 0;
   const double *velocity = nullptr;      // u_g
-  const double *gas_fraction = nullptr;  // eps_g as mapped (after any floor)
+  const double *void_fraction = nullptr;  // eps_g as mapped (after any floor)
   const double *volume = nullptr;        // V_cell (m^3)
 };
 
 // Gas data at each particle (3 per particle), e.g. from interpolate() or average_to_particles().
 struct GasAtParticles {
   const double *velocity = nullptr;                   // u_g at the particle
-  const double *gas_fraction = nullptr;               // eps_g at the particle (1 per particle)
+  const double *void_fraction = nullptr;               // eps_g at the particle (1 per particle)
   const double *pressure_gradient = nullptr;          // grad p (Pa/m); nullptr = none
   const double *viscous_stress_divergence = nullptr;  // div tau (Pa/m); nullptr = neglected
 };
@@ -70,7 +70,7 @@ struct TransferOptions {
 struct TransferResult {
   std::vector<double> particle_drag;   // eps_g f_d per particle (N), 3N
   std::vector<double> particle_force;  // eq. 28 total fluid force (N), 3N
-  std::vector<double> cell_coefficient;     // K_c (kg/m^3/s)
+  std::vector<double> cell_exchange_coefficient;     // K_c (kg/m^3/s)
   std::vector<double> cell_solid_velocity;  // U_s,c (m/s), 3 per cell
   // sum of particle drags minus the drag the gas loses, at the coupling-step gas velocity (N)
   std::array<double, 3> momentum_imbalance{};
@@ -89,7 +89,7 @@ TransferResult transfer(const CellWeights &weights, const ParticleView &particle
 // cell_exchange layer moves the per-cell arrays). Cell indices are those of `weights`
 // (e.g. compact indices after compact_cells()); transfer() is these stages on one rank.
 //   1. particle side: accumulate_solid_sums (additive over ranks, summed at cell owners);
-//   2. cell side: map_gas_fraction_from_sums and, unless conservative, averaged_cell_drag;
+//   2. cell side: map_void_fraction_from_sums and, unless conservative, averaged_cell_drag;
 //   3. particle side, with the completed cell data of its cells: particle_drag_and_force;
 //   4. conservative only: accumulate_conservative_sums (additive) then conservative_cell_drag.
 
@@ -100,20 +100,20 @@ constexpr int kSolidSumComponents = 6;
 void accumulate_solid_sums(const CellWeights &weights, const ParticleView &particles, std::size_t cell_count,
                            std::vector<double> &sums);
 
-// Gas fraction per cell from completed solid sums (as map_gas_fraction).
-void map_gas_fraction_from_sums(const std::vector<double> &sums, const std::vector<double> &cell_volume,
-                                double floor, GasFraction &out);
+// Gas fraction per cell from completed solid sums (as map_void_fraction).
+void map_void_fraction_from_sums(const std::vector<double> &sums, const std::vector<double> &cell_volume,
+                                double floor, VoidFraction &out);
 
 // Averaged gas sink (eq. 33, 35) from completed solid sums: K_c = beta_c and U_s,c = v_sm,c
-// (zero in cells without particles); `coefficient` 1 and `solid_velocity` 3 per cell.
+// (zero in cells without particles); `exchange_coefficient` 1 and `solid_velocity` 3 per cell.
 void averaged_cell_drag(const std::vector<double> &sums, const CellGas &cells, const TransferOptions &options,
-                        double *coefficient, double *solid_velocity);
+                        double *exchange_coefficient, double *solid_velocity);
 
 // Completed cell data a particle's drag needs (cell_count entries; vectors 3 per cell).
 struct CellSolidsState {
   CellGas gas;
   const double *solid_volume = nullptr;    // sum_i w_ic V_i over all particles
-  const double *coefficient = nullptr;     // K_c of averaged_cell_drag (averaged method)
+  const double *exchange_coefficient = nullptr;     // K_c of averaged_cell_drag (averaged method)
   const double *solid_velocity = nullptr;  // v_sm,c of averaged_cell_drag (averaged method)
 };
 
@@ -128,17 +128,17 @@ std::vector<double> particle_drag_and_force(const CellWeights &weights, const Pa
 // Conservative sums per cell, kConservativeSumComponents values: sum_i w_ic V_i beta_i/eps_s,i
 // and sum_i w_ic eps_g f_d,i (3).
 constexpr int kConservativeSumComponents = 4;
-void accumulate_conservative_sums(const CellWeights &weights, const std::vector<double> &particle_coefficient,
+void accumulate_conservative_sums(const CellWeights &weights, const std::vector<double> &particle_exchange_coefficient,
                                   const std::vector<double> &particle_drag, std::size_t cell_count,
                                   std::vector<double> &sums);
 
 // Conservative gas sink from completed sums: K_c = sum / V_c and U_s,c such that
 // V_c K_c (u_c - U_s,c) = sum_i w_ic eps_g f_d,i exactly.
-void conservative_cell_drag(const std::vector<double> &sums, const CellGas &cells, double *coefficient,
+void conservative_cell_drag(const std::vector<double> &sums, const CellGas &cells, double *exchange_coefficient,
                             double *solid_velocity);
 
 // Drag the gas loses, sum_c V_c K_c (u_c - U_s,c) (N).
-std::array<double, 3> gas_drag_sink(const CellGas &cells, const double *coefficient, const double *solid_velocity);
+std::array<double, 3> gas_drag_sink(const CellGas &cells, const double *exchange_coefficient, const double *solid_velocity);
 
 // Weighted average of a cell field at each particle, sum_c w_ic phi_c (seed 001 eq. 38 with
 // the mapping weights); `components` values per cell and per particle.

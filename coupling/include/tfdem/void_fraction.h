@@ -42,7 +42,7 @@ struct VoidFractionOptions {
   double cube_factor = 1.0;           // a of seed 001 eq. 34
   int divided_points_per_diameter = 6;  // sample lattice of the divided method (even: none on a face)
   bool two_dimensional = false;       // seed 000's one-layer rule
-  double gas_fraction_floor = 0.0;    // eps_g never below this (0 = no floor)
+  double void_fraction_floor = 0.0;    // eps_g never below this (0 = no floor)
 };
 
 // Particle-to-cell weights in compressed rows: particle p's share w of its volume goes to
@@ -67,23 +67,23 @@ CellWeights compute_weights(const CartesianGrid &grid, const ParticleView &parti
 CellWeights centroid_weights(const int *cell_of_particle, std::size_t count);
 
 // Per-cell result of mapping particle volume.
-struct GasFraction {
+struct VoidFraction {
   std::vector<double> solid_volume;  // sum_i w_ic V_i (m^3)
-  std::vector<double> gas_fraction;  // max(1 - solid_volume / V_cell, floor)
+  std::vector<double> void_fraction;  // max(1 - solid_volume / V_cell, floor)
   std::size_t floored_cells = 0;     // cells where the floor replaced a lower value
   double lowest_unfloored = 1.0;     // smallest 1 - solid_volume / V_cell before the floor
   int lowest_cell = -1;              // the cell holding it (-1 when every cell is empty)
 };
 
 // Solid volume and gas fraction per cell into `out`; cell_volume has one entry per cell.
-void map_gas_fraction(const CellWeights &weights, const ParticleView &particles,
-                      const std::vector<double> &cell_volume, double floor, GasFraction &out);
-GasFraction map_gas_fraction(const CellWeights &weights, const ParticleView &particles,
+void map_void_fraction(const CellWeights &weights, const ParticleView &particles,
+                      const std::vector<double> &cell_volume, double floor, VoidFraction &out);
+VoidFraction map_void_fraction(const CellWeights &weights, const ParticleView &particles,
                              const std::vector<double> &cell_volume, double floor);
 
 // Gas fraction max(1 - out.solid_volume / V_cell, floor) per cell from out.solid_volume
 // (already filled), with the floor statistics.
-void gas_fraction_from_solid_volume(const std::vector<double> &cell_volume, double floor, GasFraction &out);
+void void_fraction_from_solid_volume(const std::vector<double> &cell_volume, double floor, VoidFraction &out);
 // Renumber weights.cells to 0 .. n-1 over the n distinct cells used, in order of first use,
 // and return the original index of each. `scratch` (one entry per original cell, all -1, or
 // empty: it is then sized to the largest index) is left all -1 again, so the pass is O(weights).

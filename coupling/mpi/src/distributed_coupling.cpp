@@ -45,7 +45,7 @@ DistributedCoupling::DistributedCoupling(MPI_Comm comm, const CartesianGrid &gri
   if (owned_volume_.size() != owned_cells.size())
     throw std::invalid_argument("DistributedCoupling: one volume per owned cell expected");
   scratch_.assign(grid_.cell_count(), -1);
-  coefficient_.assign(owned_volume_.size(), 0.0);
+  exchange_coefficient_.assign(owned_volume_.size(), 0.0);
   solid_velocity_.assign(3 * owned_volume_.size(), 0.0);
 }
 
@@ -66,7 +66,7 @@ void DistributedCoupling::map(const ParticleView &particles) {
   exchange_.set_halo(halo_cells_);
   accumulate_solid_sums(weights_, particles, halo_cells_.size(), halo_sums_);
   exchange_.sum_to_owners(halo_sums_, kSolidSumComponents, owned_sums_);
-  map_gas_fraction_from_sums(owned_sums_, owned_volume_, void_fraction_.gas_fraction_floor, gas_);
+  map_void_fraction_from_sums(owned_sums_, owned_volume_, void_fraction_.void_fraction_floor, gas_);
 
   totals_.particle_volume = 0.0;
   for (std::size_t i = 0; i < particles.count; ++i) totals_.particle_volume += sphere_volume(particles.diameter[i]);
@@ -123,8 +123,8 @@ void DistributedCoupling::pack_owned_state(const double *gas_velocity, const dou
       s[5 + a] = solid_velocity_[3 * c + a];
       s[10 + a] = pressure_gradient ? pressure_gradient[3 * c + a] : 0.0;
     }
-    s[3] = gas_.gas_fraction[c];
-    s[4] = coefficient_[c];
+    s[3] = gas_.void_fraction[c];
+    s[4] = exchange_coefficient_[c];
     s[8] = gas_.solid_volume[c];
     s[9] = owned_volume_[c];
   }
@@ -132,7 +132,7 @@ void DistributedCoupling::pack_owned_state(const double *gas_velocity, const dou
 
 void DistributedCoupling::unpack_halo_state() {
   const std::size_t halo = halo_cells_.size();
-  for (auto *field : {&halo_.gas_fraction, &halo_.coefficient, &halo_.solid_volume, &halo_.volume}) field->resize(halo);
+  for (auto *field : {&halo_.void_fraction, &halo_.exchange_coefficient, &halo_.solid_volume, &halo_.volume}) field->resize(halo);
   for (auto *field : {&halo_.velocity, &halo_.solid_velocity, &halo_.gradient}) field->resize(3 * halo);
   for (std::size_t c = 0; c < halo; ++c) {
     const double *s = &halo_state_[kStateComponents * c];
@@ -141,8 +141,8 @@ void DistributedCoupling::unpack_halo_state() {
       halo_.solid_velocity[3 * c + a] = s[5 + a];
       halo_.gradient[3 * c + a] = s[10 + a];
     }
-    halo_.gas_fraction[c] = s[3];
-    halo_.coefficient[c] = s[4];
+    halo_.void_fraction[c] = s[3];
+    halo_.exchange_coefficient[c] = s[4];
     halo_.solid_volume[c] = s[8];
     halo_.volume[c] = s[9];
   }
@@ -159,38 +159,38 @@ void DistributedCoupling::drop_thin_direction() {
 void DistributedCoupling::forces(const ParticleView &particles, const double *gas_velocity,
                                  const double *pressure_gradient) {
   const std::size_t owned = owned_volume_.size(), halo = halo_cells_.size();
-  const CellGas owned_gas{owned, gas_velocity, gas_.gas_fraction.data(), owned_volume_.data()};
+  const CellGas owned_gas{owned, gas_velocity, gas_.void_fraction.data(), owned_volume_.data()};
   const bool conservative = transfer_.method == TransferMethod::PerParticleConservative;
   if (conservative) {  // K and U_s come after the particle drags; none fetched before
-    std::fill(coefficient_.begin(), coefficient_.end(), 0.0);
+    std::fill(exchange_coefficient_.begin(), exchange_coefficient_.end(), 0.0);
     std::fill(solid_velocity_.begin(), solid_velocity_.end(), 0.0);
   } else {
-    averaged_cell_drag(owned_sums_, owned_gas, transfer_, coefficient_.data(), solid_velocity_.data());
+    averaged_cell_drag(owned_sums_, owned_gas, transfer_, exchange_coefficient_.data(), solid_velocity_.data());
   }
   pack_owned_state(gas_velocity, pressure_gradient);
   exchange_.fetch_from_owners(owned_state_, kStateComponents, halo_state_);
 
   unpack_halo_state();
-  const CellSolidsState state{{halo, halo_.velocity.data(), halo_.gas_fraction.data(), halo_.volume.data()},
-                              halo_.solid_volume.data(), halo_.coefficient.data(), halo_.solid_velocity.data()};
+  const CellSolidsState state{{halo, halo_.velocity.data(), halo_.void_fraction.data(), halo_.volume.data()},
+                              halo_.solid_volume.data(), halo_.exchange_coefficient.data(), halo_.solid_velocity.data()};
   const std::vector<double> velocity_at = interpolates_gas_velocity()
                                                ? interpolated_velocity(particles)
                                                : average_to_particles(weights_, halo_.velocity.data(), 3);
-  const std::vector<double> gas_fraction_at = average_to_particles(weights_, halo_.gas_fraction.data(), 1);
+  const std::vector<double> void_fraction_at = average_to_particles(weights_, halo_.void_fraction.data(), 1);
   const std::vector<double> gradient_at =
       pressure_gradient ? average_to_particles(weights_, halo_.gradient.data(), 3) : std::vector<double>();
-  const GasAtParticles at{velocity_at.data(), gas_fraction_at.data(),
+  const GasAtParticles at{velocity_at.data(), void_fraction_at.data(),
                           pressure_gradient ? gradient_at.data() : nullptr, nullptr};
-  const std::vector<double> particle_coefficient =
+  const std::vector<double> particle_exchange_coefficient =
       particle_drag_and_force(weights_, particles, state, at, transfer_, result_);
   if (void_fraction_.two_dimensional) drop_thin_direction();
 
   if (conservative) {
-    accumulate_conservative_sums(weights_, particle_coefficient, result_.particle_drag, halo, halo_sums_);
+    accumulate_conservative_sums(weights_, particle_exchange_coefficient, result_.particle_drag, halo, halo_sums_);
     exchange_.sum_to_owners(halo_sums_, kConservativeSumComponents, owned_sums_);
-    conservative_cell_drag(owned_sums_, owned_gas, coefficient_.data(), solid_velocity_.data());
+    conservative_cell_drag(owned_sums_, owned_gas, exchange_coefficient_.data(), solid_velocity_.data());
   }
-  const std::array<double, 3> sink = gas_drag_sink(owned_gas, coefficient_.data(), solid_velocity_.data());
+  const std::array<double, 3> sink = gas_drag_sink(owned_gas, exchange_coefficient_.data(), solid_velocity_.data());
   double balance[4];
   for (int a = 0; a < 3; ++a) balance[a] = result_.momentum_imbalance[a] - sink[a];
   balance[3] = result_.drag_magnitude_sum;

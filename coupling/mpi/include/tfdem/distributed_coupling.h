@@ -54,8 +54,8 @@ class DistributedCoupling {
   void forces(const ParticleView &particles, const double *gas_velocity, const double *pressure_gradient);
 
   // Per owned cell, after map(): eps_g; after forces(): K_c and U_s,c (3 per cell).
-  const std::vector<double> &gas_fraction() const { return gas_.gas_fraction; }
-  const std::vector<double> &coefficient() const { return coefficient_; }
+  const std::vector<double> &void_fraction() const { return gas_.void_fraction; }
+  const std::vector<double> &exchange_coefficient() const { return exchange_coefficient_; }
   const std::vector<double> &solid_velocity() const { return solid_velocity_; }
   // Per local particle, after forces(): eq. 28 fluid force and its drag part eps_g f_d (3 per
   // particle each).
@@ -82,7 +82,7 @@ class DistributedCoupling {
 
   // Completed cell data of the halo cells, one field per array (storage reused every step).
   struct HaloCells {
-    std::vector<double> velocity, gas_fraction, coefficient, solid_velocity, solid_volume, volume, gradient;
+    std::vector<double> velocity, void_fraction, exchange_coefficient, solid_velocity, solid_volume, volume, gradient;
   };
 
   MPI_Comm comm_;
@@ -97,8 +97,8 @@ class DistributedCoupling {
   std::vector<int> scratch_, halo_cells_;
   std::vector<double> grid_velocity_;  // halo gas velocities on the global grid (interpolation)
   std::vector<double> halo_sums_, owned_sums_, halo_state_, owned_state_;
-  GasFraction gas_;
-  std::vector<double> coefficient_, solid_velocity_;
+  VoidFraction gas_;
+  std::vector<double> exchange_coefficient_, solid_velocity_;
   HaloCells halo_;
   TransferResult result_;
   CouplingTotals totals_;
