@@ -29,7 +29,11 @@ def main():
     checks.true("51 samples over 0.5 s", len(track) == 51, f"(got {len(track)})")
     expected = sphere.velocity([t for t, _ in track])
     u_t = sphere.terminal_velocity()
-    checks.within("terminal velocity: acceleration at u_t (m/s^2)", sphere.acceleration(-u_t), 0.0, 1e-9)
+    # Independently, by hand: the force balance (rho_p - rho_g) g pi d^3/6 = C_D rho_g pi d^2/8 u^2
+    # with Schiller-Naumann's C_D (seed 000 eq. 31) for d = 100 um, 2500 kg/m^3 in air, solved
+    # by fixed-point iteration: u_t = 0.553186076 m/s (Re = 3.69). The reference ODE includes
+    # the particle's own cell's gas fraction, 1 - 6.5e-8 (eps_g^-2.7 of eq. 30): 1e-6.
+    checks.close("reference terminal velocity vs the force balance by hand", u_t, 0.553186076, 1e-6)
     checks.close("terminal velocity (m/s) at t = 0.5 s", -track[-1][1], u_t, 0.01)
     worst = max(abs(v - e) for (_, v), e in zip(track, expected)) / u_t
     checks.within("max |v - v_ODE| / u_t over 0-0.5 s", worst, 0.0, 0.01)
