@@ -47,6 +47,15 @@ def joined_series(case_path, name, filename):
     if not folders:
         raise OutputError(f"{os.path.join(case_path, 'postProcessing', name)}: no */{filename}")
     segments = sorted(((float(p.split(os.sep)[-2]), p) for p in folders))
+    stem, ext = os.path.splitext(filename)
+    for _, path in segments:
+        pattern = re.compile(rf"{re.escape(stem)}_[0-9][0-9.e+-]*{re.escape(ext)}$")
+        stale = [n for n in os.listdir(os.path.dirname(path)) if pattern.match(n)]
+        if stale:
+            raise OutputError(f"{os.path.dirname(path)} holds {filename} beside {stale[0]}: "
+                              "OpenFOAM renames a second run's file when the first one's is still there, so "
+                              "this folder mixes two runs. Clean the case (its Allclean, or remove "
+                              "postProcessing) and run again")
     rows = []
     for k, (_, path) in enumerate(segments):
         until = segments[k + 1][0] if k + 1 < len(segments) else float("inf")

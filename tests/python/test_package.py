@@ -1,0 +1,84 @@
+"""The tfdem package's readers and editors on hand-made files (no simulation): series joined
+over a resume, stale files of an earlier run refused, fix-print and dump files rewound when a
+resumed run appends, coupling.yaml edited in place with its comments, the batch-means error
+of a hand-made signal."""
+import math
+import os
+import sys
+import tempfile
+
+from tfdem.case import Case, set_yaml_value
+from tfdem.outputs import OutputError, dump_frames, fix_print, joined_series
+from tfdem.stats import batch_means
+
+failures = []
+
+
+def check(name, condition, detail=""):
+    print(("PASS " if condition else "FAIL ") + name + (f" {detail}" if detail else ""))
+    if not condition:
+        failures.append(name)
+
+
+def write(path, text):
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    with open(path, "w") as f:
+        f.write(text)
+
+
+def main():
+    root = tempfile.mkdtemp()
+    # A run to t = 0.3 killed and resumed from its checkpoint at 0.2: the first segment's rows
+    # after 0.2 are superseded by the resumed segment's.
+    write(os.path.join(root, "postProcessing", "s", "0", "v.dat"), "# t v\n0.1 1\n0.2 2\n0.3 99\n")
+    write(os.path.join(root, "postProcessing", "s", "0.2", "v.dat"), "0.3 3\n0.4 4\n")
+    rows = joined_series(root, "s", "v.dat")
+    check("series joined over a resume", rows == [(0.1, [1.0]), (0.2, [2.0]), (0.3, [3.0]), (0.4, [4.0])], str(rows))
+    write(os.path.join(root, "postProcessing", "s", "0", "v_0.dat"), "0.1 5\n")
+    try:
+        joined_series(root, "s", "v.dat")
+        check("a file of an earlier run beside it is refused", False)
+    except OutputError as e:
+        check("a file of an earlier run beside it is refused", "mixes two runs" in str(e), str(e))
+
+    # fix print appended by a resumed run from t = 0.2
+    path = os.path.join(root, "height.txt")
+    write(path, "# t h\n0.1 1\n0.2 2\n0.3 98\n0.3 3\n0.4 4\n")
+    check("fix print rewound at a repeated time", fix_print(path) == [(0.1, [1.0]), (0.2, [2.0]), (0.3, [3.0]), (0.4, [4.0])])
+    frame = "ITEM: TIMESTEP\n{}\nITEM: NUMBER OF ATOMS\n1\nITEM: BOX BOUNDS\n0 1\n0 1\n0 1\nITEM: ATOMS id x\n1 {}\n"
+    path = os.path.join(root, "p.dump")
+    write(path, frame.format(100, 1.0) + frame.format(200, 9.0) + frame.format(200, 2.0) + frame.format(300, 3.0))
+    frames = dump_frames(path)
+    check("dump rewound at a repeated step", sorted(frames) == [100, 200, 300] and frames[200][1][0][1] == 2.0)
+
+    # coupling.yaml edited in place: a value, a new key in a section, a new section
+    case_dir = os.path.join(root, "case")
+    write(os.path.join(case_dir, "coupling.yaml"),
+          "# a case\ndem:\n  script: in.bed   # the DEM\n  coupling_interval: 10\ncoupling:\n  transfer: averaged\n")
+    case = Case(case_dir)
+    set_yaml_value(case.file("coupling.yaml"), "coupling.transfer", "per_particle")
+    set_yaml_value(case.file("coupling.yaml"), "dem.outlets", ["top"])
+    set_yaml_value(case.file("coupling.yaml"), "output.statistics_interval", 0.01)
+    text = open(case.file("coupling.yaml")).read()
+    check("yaml edited: values", case.coupling_value("coupling.transfer") == "per_particle"
+          and case.coupling_value("dem.outlets") == ["top"] and case.coupling_value("output.statistics_interval") == 0.01
+          and case.coupling_value("dem.coupling_interval") == 10, text)
+    check("yaml edited: comments kept", "# a case" in text and "# the DEM" in text)
+
+    # Batch means of a square wave of period 1 s sampled at 0.01 s: batches of 1 s hold one
+    # period each, so every batch mean is the wave's mean 0.5 and the error is 0.
+    t = [k * 0.01 for k in range(1000)]
+    y = [1.0 if (k % 100) < 50 else 0.0 for k in range(1000)]
+    m, err, n = batch_means(t, y, 0.0, 10.0, 1.0)
+    check("batch means of a whole-period square wave", abs(m - 0.5) < 1e-12 and err < 1e-12 and n == 10, f"{m} {err} {n}")
+    # Two-level batches: means 0 and 1 alternate: mean 0.5, error std/sqrt(n-1) = 0.5/sqrt(9)
+    y = [float(int(ti) % 2) for ti in t]
+    m, err, n = batch_means(t, y, 0.0, 10.0, 1.0)
+    check("batch-means error by hand", abs(m - 0.5) < 1e-12 and abs(err - 0.5 / math.sqrt(9)) < 1e-12, f"{m} {err}")
+
+    print(f"{'FAILED: ' + ', '.join(failures) if failures else 'all passed'}")
+    sys.exit(1 if failures else 0)
+
+
+if __name__ == "__main__":
+    main()
