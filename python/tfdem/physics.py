@@ -122,3 +122,25 @@ class SettlingSphere:
             mid = 0.5 * (lo + hi)
             lo, hi = (mid, hi) if self.acceleration(-mid) < 0 else (lo, mid)
         return 0.5 * (lo + hi)
+
+
+class PlanePoiseuille:
+    """Laminar flow between two plates h apart at mean velocity U (any textbook): parabolic
+    u(y) = 6 U (y - y0)(y1 - y)/h^2, centreline 1.5 U, pressure gradient 12 mu U / h^2. From a
+    channel case's own files: h from its mesh, U from its inlet, mu from transportProperties."""
+
+    def __init__(self, case):
+        lo, hi = case.mesh_bounds()
+        self.y0, self.y1 = lo[1], hi[1]
+        self.h = hi[1] - lo[1]
+        self.u_mean = case.patch_value("U", "inlet")[0]
+        _, self.mu = case.gas()
+
+    def velocity(self, y):
+        return 6 * self.u_mean * (y - self.y0) * (self.y1 - y) / self.h ** 2
+
+    def centreline_velocity(self):
+        return 1.5 * self.u_mean
+
+    def pressure_drop(self, length):
+        return 12 * self.mu * self.u_mean * length / self.h ** 2

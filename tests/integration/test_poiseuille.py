@@ -12,6 +12,7 @@ import os
 
 from tfdem import TUTORIALS
 from tfdem.case import Case
+from tfdem.physics import PlanePoiseuille
 from tfdem_testlib import Checks, copy_case, read_probe, run
 
 TUTORIAL = os.path.join(TUTORIALS, "poiseuille_channel")
@@ -20,12 +21,9 @@ TUTORIAL = os.path.join(TUTORIALS, "poiseuille_channel")
 def analytic():
     """(dp over the probes (Pa), centreline velocity (m/s)) of the case's own files."""
     case = Case(TUTORIAL)
-    lo, hi = case.mesh_bounds()
-    h = hi[1] - lo[1]
-    u_mean = case.patch_value("U", "inlet")[0]
-    _, mu = case.gas()
+    flow = PlanePoiseuille(case)
     upstream, downstream = case.probe_locations("centreline")[:2]
-    return 12 * mu * u_mean * (downstream[0] - upstream[0]) / h**2, 1.5 * u_mean
+    return flow.pressure_drop(downstream[0] - upstream[0]), flow.centreline_velocity()
 
 
 def probe_values(case):

@@ -14,27 +14,25 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 from tfdem import outputs  # noqa: E402
 from tfdem.case import Case, vector  # noqa: E402
+from tfdem.physics import PlanePoiseuille  # noqa: E402
 
 
 def main(case_path="."):
     case = Case(case_path)
-    lo, hi = case.mesh_bounds()
-    h = hi[1] - lo[1]
-    u_mean = case.patch_value("U", "inlet")[0]
-    _, mu = case.gas()
+    flow = PlanePoiseuille(case)
     upstream, downstream = case.probe_locations("centreline")[:2]
     probe_dx = downstream[0] - upstream[0]
     rows = outputs.latest_set(case_path, "profile", "outletProfile_U.xy")
     y = [r[0] for r in rows]
     u = [r[1] for r in rows]
-    yy = [lo[1] + h * i / 200 for i in range(201)]
-    exact = [6 * u_mean * (v - lo[1]) * (hi[1] - v) / h**2 for v in yy]
+    yy = [flow.y0 + flow.h * i / 200 for i in range(201)]
+    exact = [flow.velocity(v) for v in yy]
     _, p = outputs.probes(case_path, "centreline", "p")[-1]
     dp = p[0] - p[1]
-    dp_exact = 12 * mu * u_mean * probe_dx / h**2
-    u_c = u[len(u) // 2]
-    print(f"centreline velocity {u_c:.6g} m/s, analytic {1.5 * u_mean:.6g} m/s, "
-          f"error {100 * (u_c / (1.5 * u_mean) - 1):+.3f} %")
+    dp_exact = flow.pressure_drop(probe_dx)
+    u_c, u_c_exact = u[len(u) // 2], flow.centreline_velocity()
+    print(f"centreline velocity {u_c:.6g} m/s, analytic {u_c_exact:.6g} m/s, "
+          f"error {100 * (u_c / u_c_exact - 1):+.3f} %")
     print(f"pressure drop over {probe_dx:.6g} m: {dp:.6g} Pa, analytic {dp_exact:.6g} Pa, "
           f"error {100 * (dp / dp_exact - 1):+.3f} %")
     x_profile = vector(re.search(r"start\s*(\([^()]*\))", case.function_body("profile")).group(1))[0]
