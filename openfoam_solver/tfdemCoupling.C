@@ -107,6 +107,7 @@ Foam::TfdemCoupling::TfdemCoupling
     tfdemChecks::particles(config_, *dem_);
     tfdemChecks::gravity(g, *dem_);
     tfdemChecks::timeSteps(mesh.time(), config_, *dem_, gasVelocity, g.value());
+    tfdemChecks::scene(config_, grid_.grid, *dem_, gasVelocity, g.value());
     outlets_.reset(new TfdemOutlets(mesh, config_.outlets, configFile));
     accounting_.reset
     (

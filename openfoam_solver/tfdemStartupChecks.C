@@ -226,9 +226,8 @@ std::vector<double> smallestOfType(const tfdem::DemInstance& dem, const double* 
     return smallest;
 }
 
-// The fastest a particle may hit another or a wall: the fastest inflow, or a free fall over
-// the domain's extent along gravity.
-double largestImpactSpeed(const volVectorField& U, const vector& g)
+// The fastest inflow: the largest |U| on the patches where U is fixed.
+double largestInflowSpeed(const volVectorField& U)
 {
     scalar fastest = 0;
     forAll(U.boundaryField(), patchi)
@@ -238,6 +237,14 @@ double largestImpactSpeed(const volVectorField& U, const vector& g)
             fastest = max(fastest, gMax(mag(U.boundaryField()[patchi])));
         }
     }
+    return fastest;
+}
+
+// The fastest a particle may hit another or a wall: the fastest inflow, or a free fall over
+// the domain's extent along gravity.
+double largestImpactSpeed(const volVectorField& U, const vector& g)
+{
+    const scalar fastest = largestInflowSpeed(U);
     const boundBox domain(U.mesh().points(), true);
     const scalar fall = mag(g) > 0 ? std::sqrt(2*mag(g)*mag(domain.span() & (g/mag(g)))) : 0;
     return max(fastest, fall);
@@ -347,6 +354,54 @@ void contactTimeSteps(const fileName& script, const tfdem::DemInstance& dem, dou
 }
 
 } // End anonymous namespace
+
+
+void Foam::tfdemChecks::scene
+(
+    const tfdem::CouplingConfig& config,
+    const tfdem::CartesianGrid& grid,
+    const tfdem::DemInstance& dem,
+    const volVectorField& U,
+    const vector& g
+)
+{
+    tfdem::DemInstance::LinearContact contact;
+    const scalar inflow = largestInflowSpeed(U);
+    if
+    (
+        !dem.linear_contact(1, 1, contact) || contact.damping < 0 || inflow <= 0
+     || config.particle_diameter <= 0
+    )
+    {
+        Info<< "TFDEM scene: not checked (it needs a linear contact with absolute damping"
+            << " and an inflow)" << endl;
+        return;
+    }
+    tfdem::Scene s;
+    s.particle_diameter = config.particle_diameter;
+    s.particle_density = config.particle_density;
+    s.gas = config.gas;
+    s.gravity = mag(g);
+    s.gas_velocity = inflow;
+    s.cell_size = std::min(grid.spacing[0], grid.spacing[1]);
+    s.normal_stiffness = contact.stiffness;
+    s.normal_damping = contact.damping;
+    s.dem_time_step = dem.time_step();
+    s.coupling_interval = config.coupling_interval;
+    s.drag_law = config.transfer.law;
+    try
+    {
+        std::istringstream report(tfdem::format_report(tfdem::check_scene(s)));
+        for (std::string line; std::getline(report, line);)
+        {
+            Info<< "TFDEM scene: " << line.c_str() << endl;
+        }
+    }
+    catch (const std::exception& e)
+    {
+        Info<< "TFDEM scene: not checked (" << e.what() << ")" << endl;
+    }
+}
 
 
 void Foam::tfdemChecks::timeSteps
