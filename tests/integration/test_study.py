@@ -3,14 +3,19 @@
 1. `study.py run` and `report` on the uniform bed, TF-DEM (method 1) and the TFM peer, 0.2 s
    each (windows and intervals scale with the end time): every figure the two runs allow, the
    CSVs and README table are written and every statistic is finite.
-2. Bad input, each a clear message: an unknown study name (./tfdem study); no
+2. A study stopped by SIGTERM stops its solver (no orphan left running) and exits 130; a
+   second study on the same runs while one is running refuses, naming the process; run again,
+   the stopped run finishes.
+3. Bad input, each a clear message: an unknown study name (./tfdem study); no
    twoPhaseEulerFoam on PATH; a run that fails (cells 1 mm tall, 2.5 mm particles, with
    the centroid mapping stop at t = 0) -- the study exits 1 naming it, the other run finishes
    and keeps its results, and the report covers it.
 """
 import json
 import os
+import signal
 import subprocess
+import time
 
 import yaml
 
@@ -84,9 +89,50 @@ def check_bad_input(checks):
     checks.true("a misspelt run key", code == 2 and "unknown key 'refine' (did you mean 'refine_y'?)" in output)
 
 
+def alive(pid):
+    try:
+        os.kill(pid, 0)
+        return True
+    except ProcessLookupError:
+        return False
+
+
+def check_interrupt(checks):
+    root = scratch("study_interrupt")
+    args = ["run", "--runs", "uniform_m1", "--end-time", "0.2", "--root", root]
+    first = subprocess.Popen(["/usr/bin/python3", os.path.join(STUDY, "study.py")] + args, env=environment(),
+                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    status_file = os.path.join(root, "runs", "uniform_m1", "study.status.json")
+    pid, deadline = None, time.monotonic() + 120
+    while pid is None and time.monotonic() < deadline and first.poll() is None:
+        time.sleep(0.5)
+        try:
+            pid = json.load(open(status_file)).get("pid")
+        except (OSError, ValueError):
+            pass
+    checks.true("the solver started", pid is not None)
+    if pid is None:
+        first.kill()
+        return
+    code, output = study(args)
+    checks.true("a second study on a running run refuses, naming it",
+                code == 2 and f"uniform_m1 (process {pid})" in output, f"(exit code {code})")
+    first.send_signal(signal.SIGTERM)
+    output = first.communicate(timeout=60)[0]
+    print(output[-2000:])
+    checks.true("SIGTERM stops the study with exit code 130", first.returncode == 130, f"(exit code {first.returncode})")
+    checks.true("... and its solver", not alive(pid), f"(process {pid})")
+    checks.true("... saying the runs resume", "resume from their last checkpoint" in output)
+    checks.true("the run is marked stopped", json.load(open(status_file)).get("state") == "stopped")
+    code, output = study(args)
+    checks.true("run again, the stopped run finishes", code == 0 and "uniform_m1: finished" in output,
+                f"(exit code {code})")
+
+
 def main():
     checks = Checks()
     check_pipeline(checks)
+    check_interrupt(checks)
     check_bad_input(checks)
     checks.finish()
 

@@ -17,6 +17,7 @@ import json
 import os
 import re
 import shutil
+import signal
 import subprocess
 import sys
 import time
@@ -86,6 +87,18 @@ class Run:
 
     def done(self):
         return self.status().get("state") == "done"
+
+    def running_elsewhere(self):
+        """The process id of a solver still running this case (started by another or a killed
+        study), else None."""
+        status = self.status()
+        pid = status.get("pid")
+        if status.get("state") != "running" or not pid:
+            return None
+        try:
+            return pid if os.path.samefile(f"/proc/{pid}/cwd", self.case.path) else None
+        except OSError:
+            return None
 
     def wall_seconds(self):
         """Wall time over every segment: the last ClockTime OpenFOAM printed in each log."""
@@ -238,10 +251,11 @@ class Run:
         segment = int(logs[-1].rsplit(".", 1)[1]) + 1 if logs else 1
         log = self.case.file(f"log.solver.{segment}")
         command = ["./Allsolve"] if self.tfm else [self.solver]
-        self.set_status(state="running", resumed_from=resume)
         with open(log, "w") as out:
-            return subprocess.Popen(command, cwd=self.case.path, env=environment(), stdout=out,
+            proc = subprocess.Popen(command, cwd=self.case.path, env=environment(), stdout=out,
                                     stderr=subprocess.STDOUT, start_new_session=True)
+        self.set_status(state="running", resumed_from=resume, pid=proc.pid)
+        return proc
 
     def finish(self, code):
         log = self.logs()[-1]
@@ -298,7 +312,12 @@ def print_progress(active, started):
 
 
 def run_study(runs, end_time, jobs, poll=2.0, report_every=60.0):
-    """Run the runs, `jobs` at a time; True when all finished."""
+    """Run the runs, `jobs` at a time; True when all finished. Interrupted (Ctrl-C, SIGTERM),
+    it stops its solvers, which resume from their last checkpoint on the next call."""
+    busy = [f"{r.name} (process {r.running_elsewhere()})" for r in runs if r.running_elsewhere()]
+    if busy:
+        raise StudyError(f"still running from another or a killed study: {', '.join(busy)}; wait for it, or "
+                         "stop it (kill -- -<process>) and run again: the run resumes from its checkpoint")
     for r in runs:
         status = r.status()
         if r.done() and status.get("end_time") == end_time:
@@ -308,7 +327,28 @@ def run_study(runs, end_time, jobs, poll=2.0, report_every=60.0):
             print(f"{r.name}: preparing {r.case.path}", flush=True)
             r.prepare(end_time)
     pending = [r for r in runs if not r.done()]
-    active, started, ok = [], {}, True
+    active = []
+    previous = signal.signal(signal.SIGTERM, _interrupt)
+    try:
+        return _run_pending(pending, active, jobs, poll, report_every)
+    except KeyboardInterrupt:
+        print("study stopped; its runs resume from their last checkpoint when it is run again", file=sys.stderr)
+        raise
+    finally:
+        for r, proc in active:
+            if proc.poll() is None:
+                os.killpg(proc.pid, signal.SIGTERM)
+                proc.wait()
+                r.set_status(state="stopped", pid=None)
+        signal.signal(signal.SIGTERM, previous)
+
+
+def _interrupt(signum, frame):
+    raise KeyboardInterrupt
+
+
+def _run_pending(pending, active, jobs, poll, report_every):
+    started, ok = {}, True
     last_report = 0.0
     while pending or active:
         while pending and len(active) < jobs:
@@ -339,8 +379,9 @@ def selected_runs(study, names, root):
         if unknown:
             raise StudyError(f"unknown run(s) {', '.join(unknown)}; study.yaml has: {', '.join(study['runs'])}")
         runs = [r for r in runs if r.name in names]
-    # the longest first, so the two cores finish together
-    return sorted(runs, key=lambda r: (r.tfm, -r.spec.get("refine_y", 1), r.bed != "jet"))
+    # the longest first, so the two cores finish together: the jet bed's (fine grid first, its
+    # TFM as long as its coarse TF-DEM), then the uniform bed's (its TFM the shortest)
+    return sorted(runs, key=lambda r: (r.bed != "jet", -r.spec.get("refine_y", 1), r.tfm and r.bed != "jet"))
 
 
 def main(argv=None):
@@ -379,6 +420,8 @@ def main(argv=None):
     except (StudyError, RunError) as e:
         print(f"study.py: {e}", file=sys.stderr)
         return 2
+    except KeyboardInterrupt:
+        return 130
 
 
 if __name__ == "__main__":
