@@ -269,9 +269,12 @@ class Report:
         x = numpy.array(p["position"])
         v = numpy.array(p["velocity"])
         nc = numpy.array(p["coordination"])
-        fig, ax = plt.subplots(figsize=(4, 6))
-        sc = ax.scatter(x[:, 0], x[:, 1], c=nc, s=4, cmap="jet", vmin=0, vmax=6)
-        ax.quiver(x[:, 0], x[:, 1], v[:, 0], v[:, 1], scale=40, width=0.002)
+        fig, ax = plt.subplots(figsize=(5, 7.5))
+        sc = ax.scatter(x[:, 0], x[:, 1], c=nc, s=6, cmap="jet", vmin=0, vmax=6)
+        # arrows in metres per (m/s): 1 m/s is drawn 1 cm long
+        arrows = ax.quiver(x[:, 0], x[:, 1], v[:, 0], v[:, 1], angles="xy", scale_units="xy", scale=100,
+                           width=0.003, color="black")
+        ax.quiverkey(arrows, 0.6, 0.95, 1.0, "1 m/s", labelpos="E", coordinates="axes")
         ax.set_xlim(0, d.grid.upper(0))
         ax.set_ylim(0, 0.45)
         ax.set_aspect("equal")
