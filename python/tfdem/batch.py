@@ -1,0 +1,244 @@
+"""Batches of long runs, a few side by side, that survive being stopped: each run is a case
+folder with a status file; a finished run is skipped, a stopped one resumes from its last
+complete time folder (the coupled solver's joint checkpoint, or the fields a plain OpenFOAM
+solver wrote). The seed 000 study and the speed-against-error sweeps are such batches.
+"""
+import json
+import os
+import re
+import shutil
+import signal
+import subprocess
+import sys
+import time
+
+from tfdem.case import Case
+from tfdem.run import environment
+
+STATUS = "study.status.json"
+
+
+class BatchError(Exception):
+    """A batch definition or run problem, named."""
+
+
+class CaseRun:
+    """One run: a name, its case folder and the command that solves it. Subclasses prepare the
+    folder (prepare(end_time)) and may say what makes a time folder complete."""
+
+    solver = "tfdemFoam"
+
+    def __init__(self, name, path):
+        self.name = name
+        self.case = Case(path)
+
+    def command(self):
+        return [self.solver]
+
+    def complete_fields(self):
+        """Files a time folder needs to resume from (the coupled solver's checkpoint marker)."""
+        return ("tfdem.checkpoint",)
+
+    # Status ------------------------------------------------------------------------------
+    def status(self):
+        try:
+            with open(self.case.file(STATUS)) as f:
+                return json.load(f)
+        except (OSError, ValueError):
+            return {"state": "new"}
+
+    def set_status(self, **values):
+        status = self.status()
+        status.update(values)
+        with open(self.case.file(STATUS), "w") as f:
+            json.dump(status, f, indent=1)
+
+    def done(self):
+        return self.status().get("state") == "done"
+
+    def running_elsewhere(self):
+        """The process id of a solver still running this case (started by another or a killed
+        batch), else None."""
+        status = self.status()
+        pid = status.get("pid")
+        if status.get("state") != "running" or not pid:
+            return None
+        try:
+            return pid if os.path.samefile(f"/proc/{pid}/cwd", self.case.path) else None
+        except OSError:
+            return None
+
+    def wall_seconds(self):
+        """Wall time over every segment: the last ClockTime OpenFOAM printed in each log."""
+        return self._last_over_segments(r"ClockTime = (\d+(?:\.\d*)?)")
+
+    def cpu_seconds(self):
+        """The solver's processor time over every segment (OpenFOAM's ExecutionTime): less
+        sensitive than wall time to what else runs on the machine."""
+        return self._last_over_segments(r"ExecutionTime = (\d+(?:\.\d*)?)")
+
+    def _last_over_segments(self, pattern):
+        total = 0.0
+        for log in self.logs():
+            value = None
+            with open(log, errors="replace") as f:
+                for line in f:
+                    found = re.search(pattern, line)
+                    if found:
+                        value = float(found.group(1))
+            total += value or 0.0
+        return total
+
+    def logs(self):
+        if not os.path.isdir(self.case.path):
+            return []
+        return sorted((self.case.file(n) for n in os.listdir(self.case.path) if re.match(r"log\.solver\.\d+$", n)),
+                      key=lambda p: int(p.rsplit(".", 1)[1]))
+
+    # Running -----------------------------------------------------------------------------
+    def resume_point(self):
+        """Remove time folders a stopped run left incomplete; return the time to resume from
+        (None: start afresh)."""
+        times = sorted((float(n), n) for n in os.listdir(self.case.path) if _is_time(self.case.file(n)))
+        complete = [t for t in times if t[0] > 0 and self._complete(t[1])]
+        last = complete[-1][0] if complete else 0.0
+        for value, name in times:
+            if value > last:
+                shutil.rmtree(self.case.file(name))
+        return complete[-1][1] if complete else None
+
+    def _complete(self, time_name):
+        folder = self.case.file(time_name)
+        return all(os.path.isfile(os.path.join(folder, n)) and os.path.getsize(os.path.join(folder, n)) > 0
+                   for n in self.complete_fields())
+
+    def start(self):
+        """Start (or resume) the solver in the background, in its own session; returns the
+        process."""
+        resume = self.resume_point()
+        self.case.set_control(startFrom="latestTime" if resume else "startTime")
+        if not resume:  # starting afresh: earlier segments' work is gone, and their wall time
+            for old in self.logs():
+                os.remove(old)
+        logs = self.logs()
+        segment = int(logs[-1].rsplit(".", 1)[1]) + 1 if logs else 1
+        log = self.case.file(f"log.solver.{segment}")
+        with open(log, "w") as out:
+            proc = subprocess.Popen(self.command(), cwd=self.case.path, env=environment(), stdout=out,
+                                    stderr=subprocess.STDOUT, start_new_session=True)
+        self.set_status(state="running", resumed_from=resume, pid=proc.pid)
+        return proc
+
+    def finish(self, code):
+        log = self.logs()[-1]
+        text = open(log, errors="replace").read()
+        ok = code == 0 and re.search(r"(?m)^End\s*$", text)
+        self.set_status(state="done" if ok else "failed", exit_code=code, wall_seconds=self.wall_seconds())
+        if not ok:
+            tail = "\n".join(text.splitlines()[-25:])
+            print(f"\n{self.name}: {self.solver} failed (exit code {code}); last lines of {log}:\n{tail}\n",
+                  file=sys.stderr, flush=True)
+        return bool(ok)
+
+    def progress(self):
+        """(simulated time, end time) from the last segment's log."""
+        logs = self.logs()
+        end = float(self.case.control("endTime"))
+        if not logs:
+            return 0.0, end
+        t = 0.0
+        with open(logs[-1], errors="replace") as f:
+            for line in f:
+                found = re.match(r"(?:TFDEM progress: t = |Time = )(\S+)", line)
+                if found:
+                    try:
+                        t = float(found.group(1))
+                    except ValueError:
+                        pass
+        return t, end
+
+
+def _is_time(path):
+    try:
+        float(os.path.basename(path))
+    except ValueError:
+        return False
+    return os.path.isdir(path)
+
+
+def clock(seconds):
+    """Seconds as 1h02m or 3m04s."""
+    seconds = int(seconds)
+    return f"{seconds // 3600}h{seconds % 3600 // 60:02d}m" if seconds >= 3600 else f"{seconds // 60}m{seconds % 60:02d}s"
+
+
+def print_progress(active, started):
+    for r, _ in active:
+        t, end = r.progress()
+        wall = time.monotonic() - started[r.name]
+        done_fraction = t / end if end > 0 else 0.0
+        eta = wall * (1.0 - done_fraction) / done_fraction if done_fraction > 0.02 else float("nan")
+        print(f"  {r.name:<26} t = {t:8.3f} / {end:g} s   wall {clock(wall)}   ETA "
+              f"{clock(eta) if eta == eta else '?'}", flush=True)
+
+
+def run_batch(runs, end_time, jobs, poll=2.0, report_every=60.0):
+    """Run the runs, `jobs` at a time, preparing those that are new or were prepared for
+    another end time; True when all finished. Interrupted (Ctrl-C, SIGTERM), it stops its
+    solvers, which resume from their last checkpoint on the next call."""
+    busy = [f"{r.name} (process {r.running_elsewhere()})" for r in runs if r.running_elsewhere()]
+    if busy:
+        raise BatchError(f"still running from another or a killed batch: {', '.join(busy)}; wait for it, or "
+                         "stop it (kill -- -<process>) and run again: the run resumes from its checkpoint")
+    for r in runs:
+        status = r.status()
+        if r.done() and status.get("end_time") == end_time:
+            print(f"{r.name}: done ({clock(status.get('wall_seconds', 0))} wall), skipped", flush=True)
+            continue
+        if status.get("state") == "new" or status.get("end_time") != end_time or not os.path.isdir(r.case.path):
+            print(f"{r.name}: preparing {r.case.path}", flush=True)
+            r.prepare(end_time)
+    pending = [r for r in runs if not r.done()]
+    active = []
+    previous = signal.signal(signal.SIGTERM, _interrupt)
+    try:
+        return _run_pending(pending, active, jobs, poll, report_every)
+    except KeyboardInterrupt:
+        print("stopped; the runs resume from their last checkpoint when run again", file=sys.stderr)
+        raise
+    finally:
+        for r, proc in active:
+            if proc.poll() is None:
+                os.killpg(proc.pid, signal.SIGTERM)
+                proc.wait()
+                r.set_status(state="stopped", pid=None)
+        signal.signal(signal.SIGTERM, previous)
+
+
+def _interrupt(signum, frame):
+    raise KeyboardInterrupt
+
+
+def _run_pending(pending, active, jobs, poll, report_every):
+    started, ok = {}, True
+    last_report = 0.0
+    while pending or active:
+        while pending and len(active) < jobs:
+            r = pending.pop(0)
+            print(f"{r.name}: {'resuming' if r.resume_point() else 'starting'} {r.solver}", flush=True)
+            active.append((r, r.start()))
+            started[r.name] = time.monotonic()
+        time.sleep(poll)
+        for entry in list(active):
+            r, proc = entry
+            code = proc.poll()
+            if code is None:
+                continue
+            active.remove(entry)
+            finished = r.finish(code)
+            ok = ok and finished
+            print(f"{r.name}: {'finished' if finished else 'FAILED'} ({clock(r.wall_seconds())} wall)", flush=True)
+        if active and time.monotonic() - last_report > report_every:
+            print_progress(active, started)
+            last_report = time.monotonic()
+    return ok
