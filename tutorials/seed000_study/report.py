@@ -16,7 +16,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy  # noqa: E402
 
-from tfdem.outputs import joined_series, particle_statistics, vtk_particles  # noqa: E402
+from tfdem.bed import BedOutputs, l1_difference, to_grid  # noqa: E402
+from tfdem.outputs import vtk_particles  # noqa: E402
 from tfdem.stats import batch_means, dominant_frequency, window  # noqa: E402
 
 # Seed 000's results (text of the paper; its figures give no more digits)
@@ -36,48 +37,14 @@ PAPER = {
 }
 
 
-class RunData:
-    """What a finished run wrote, as arrays."""
+class RunData(BedOutputs):
+    """What a finished run wrote, as arrays, with its cost."""
 
     def __init__(self, run):
-        self.run, self.name, self.tfm = run, run.name, run.tfm
-        self.grid = run.case.grid()
-        nx, ny = self.grid.counts[0], self.grid.counts[1]
-        self.shape = (ny, nx)
-        self.y = numpy.array([c[1] for c in self.grid.centres()]).reshape(self.shape)
-        path = run.case.path
-        first = "alpha.particles" if self.tfm else "voidFraction"
-        rows = joined_series(path, "studyFields", first)
-        self.field_t = numpy.array([r[0] for r in rows])
-        values = numpy.array([r[1] for r in rows])
-        self.solids = values if self.tfm else 1.0 - values
-        if not self.tfm:
-            self.contact = numpy.array([r[1] for r in joined_series(path, "studyFields", "contactForceByWeight")])
-            self.drag = numpy.array([r[1] for r in joined_series(path, "studyFields", "dragForceByWeight")])
-            self.particles = particle_statistics(path)
-        p = joined_series(path, "studyPressure", "p")
-        self.p_t = numpy.array([r[0] for r in p])
-        rows_p = numpy.array([r[1] for r in p])
-        self.dp = rows_p[:, :nx].mean(axis=1) - rows_p[:, nx:].mean(axis=1)
+        super().__init__(run.case, run.tfm)
+        self.run, self.name = run, run.name
         self.wall = run.wall_seconds()
         self.cpu = run.cpu_seconds()
-
-    def mean_height(self):
-        """(t, mean particle height in m): the particles' (TF-DEM) or the solids' centroid
-        height sum(y alpha_s) / sum(alpha_s) on the uniform cells (TFM, as Ref. 26 of seed 000)."""
-        if not self.tfm:
-            return numpy.array(self.particles["t"]), numpy.array(self.particles["mean_height"])
-        weights = self.solids
-        return self.field_t, (weights * self.y.ravel()).sum(axis=1) / weights.sum(axis=1)
-
-    def field_average(self, values, start, end):
-        pick = (self.field_t >= start - 1e-9) & (self.field_t <= end + 1e-9)
-        if not pick.any():
-            raise ValueError(f"{self.name}: no field samples in [{start}, {end}] s")
-        return values[pick].mean(axis=0).reshape(self.shape)
-
-    def field_at(self, values, t):
-        return values[int(numpy.argmin(numpy.abs(self.field_t - t)))].reshape(self.shape)
 
 
 def averaged(t, y, start, end, batch):
@@ -152,18 +119,19 @@ class Report:
         bottom 45 cm, the fine map averaged onto the coarse cells."""
         a = self.data[coarse].field_average(self.data[coarse].solids, start, end)
         b = self.data[fine].field_average(self.data[fine].solids, start, end)
-        factor = b.shape[0] // a.shape[0]
-        b = b.reshape(a.shape[0], factor, a.shape[1]).mean(axis=1)
-        rows = self.data[coarse].y[:, 0] < 0.45
-        return float(numpy.abs(a[rows] - b[rows]).mean())
+        return l1_difference(a, to_grid(b, a.shape), rows=self._rows_below(self.data[coarse], 0.45))
 
     def window_l1(self, run, first, second):
         """Mean |difference| of one run's time-averaged solids fraction over two windows,
         bottom 45 cm: the statistical noise of such an average, the floor under grid_l1."""
         d = self.data[run]
         a, b = d.field_average(d.solids, *first), d.field_average(d.solids, *second)
-        rows = d.y[:, 0] < 0.45
-        return float(numpy.abs(a[rows] - b[rows]).mean())
+        return l1_difference(a, b, rows=self._rows_below(d, 0.45))
+
+    @staticmethod
+    def _rows_below(d, height):
+        """Number of cell rows whose centres lie below `height` (m)."""
+        return int((d.y[:, 0] < height).sum())
 
     # CSV -----------------------------------------------------------------------------------
     def write_csv(self, d):

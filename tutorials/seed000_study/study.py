@@ -22,6 +22,7 @@ import yaml
 
 from tfdem import TUTORIALS
 from tfdem.batch import BatchError, CaseRun, clock, run_batch
+from tfdem.bed import write_bed_probes
 from tfdem.case import Case, set_dict_entries
 from tfdem.run import RunError, environment, run
 
@@ -138,37 +139,9 @@ class Run(CaseRun):
         return min(1.0, end_time / self.study["end_time"])
 
     def _write_probes(self):
-        """The study's function objects: every field of the maps at every cell centre, and p
-        on the bottom row of cells and the row 20 cm above it (Delta p at 20 cm, Fig. 3)."""
-        grid = self.case.grid()
-        centres = grid.centres()
-        z = grid.origin[2] + 0.5 * grid.spacing[2]
-        bottom = grid.origin[1] + 0.5 * grid.spacing[1]
-        rows = [(x, y) for y in (bottom, bottom + 0.2) for x, _, _ in centres[:grid.counts[0]]]
-        fields = "(alpha.particles)" if self.tfm else "(voidFraction contactForceByWeight dragForceByWeight)"
-        field_dt, pressure_dt = self.study["field_interval"], self.study["statistics_interval"]
-        if self.tfm:
-            control = lambda dt: f"writeControl adjustableRunTime; writeInterval {dt:.10g};"
-        else:
-            steps = lambda dt: max(1, int(round(dt / self.case.delta_t())))
-            control = lambda dt: f"writeControl timeStep; writeInterval {steps(dt)};"
-        points = "\n".join(f"            ({x:.10g} {y:.10g} {z:.10g})" for x, y, _ in centres)
-        row_points = "\n".join(f"            ({x:.10g} {y:.10g} {z:.10g})" for x, y in rows)
-        block = (
-            "functions\n{\n"
-            "    // written by study.py: every cell centre (maps) and two rows of cells (Delta p)\n"
-            "    studyFields\n    {\n        type probes; libs (\"libsampling.so\");\n"
-            f"        {control(field_dt)}\n        fields {fields};\n"
-            f"        probeLocations\n        (\n{points}\n        );\n    }}\n"
-            "    studyPressure\n    {\n        type probes; libs (\"libsampling.so\");\n"
-            f"        {control(pressure_dt)}\n        fields (p);\n"
-            f"        probeLocations\n        (\n{row_points}\n        );\n    }}\n"
-            "}\n")
-        path = self.case.file("system", "controlDict")
-        text = open(path).read()
-        start = re.search(r"(?m)^functions\s*\n?\s*\{", text)
-        text = (text[:start.start()] if start else text) + block
-        open(path, "w").write(text)
+        """The study's function objects (tfdem.bed): the maps at every cell centre and p on
+        the bottom row of cells and the row 20 cm above it (Delta p at 20 cm, Fig. 3)."""
+        write_bed_probes(self.case, self.study["field_interval"], self.study["statistics_interval"], self.tfm)
 
 
 def selected_runs(study, names, root):
