@@ -1,0 +1,284 @@
+#!/usr/bin/env python3
+"""Speed against error: a sweep of a bed tutorial's settings, each point's wall time and its
+error against a reference point, a Pareto plot per metric, a CSV and a README table.
+
+    pareto.py run SWEEP.yaml [--end-time T] [--jobs N] [--root DIR] [--points a,b]
+    pareto.py report SWEEP.yaml [--end-time T] [--root DIR]
+
+A sweep (bench/pareto/<case>.yaml) names a tutorial, the simulated time, the averaging window
+and its points: each point changes only what it lists (see POINT_KEYS). Points are runs of
+tfdem.batch: resumable, skipped when done, `--jobs` side by side (default 1: wall times are
+only comparable when nothing else runs; with 2 the processor time is the fairer cost).
+
+Metrics over the window, each with its standard error from batch means: mean and standard
+deviation of Delta p at 20 cm, mean particle height, the dominant frequency of Delta p (error:
+its spectral resolution 1/window), and the time-averaged solids-fraction map (error: L1 against
+the reference on the coarser grid; noise: the same L1 between the two halves of each run's
+window). A point's error in a metric is |value - reference|; it is within noise when below
+twice the combined standard error sqrt(e^2 + e_ref^2).
+"""
+import argparse
+import csv
+import difflib
+import os
+import re
+import shutil
+import sys
+
+import yaml
+
+from tfdem import TUTORIALS
+from tfdem.batch import BatchError, CaseRun, run_batch
+from tfdem.accuracy import METRICS, map_error, pareto_front, scalar_error, scalar_metrics
+from tfdem.bed import BedOutputs, write_bed_probes
+from tfdem.case import Case
+from tfdem.run import RunError, decompose, run
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+SWEEP_KEYS = ("template", "packing", "end_time", "window", "batch", "field_interval", "statistics_interval", "reference",
+              "points")
+POINT_KEYS = ("dem_time_step", "gas_time_step", "refine", "coupling", "fv_solution", "ranks")
+
+
+class SweepError(Exception):
+    """A sweep definition problem, named with the file, the key and the fix."""
+
+
+def _unknown(path, where, key, valid):
+    near = difflib.get_close_matches(key, valid, 1)
+    return SweepError(f"{path}: {where}unknown key '{key}'" + (f" (did you mean '{near[0]}'?)" if near else "")
+                      + f"; valid: {', '.join(valid)}")
+
+
+def load_sweep(path):
+    try:
+        with open(path) as f:
+            sweep = yaml.safe_load(f)
+    except OSError as e:
+        raise SweepError(f"{path}: cannot read the sweep ({e.strerror})") from None
+    for key in sweep:
+        if key not in SWEEP_KEYS:
+            raise _unknown(path, "", key, SWEEP_KEYS)
+    for key in SWEEP_KEYS:
+        if key not in sweep:
+            raise SweepError(f"{path}: missing '{key}'")
+    for name, spec in sweep["points"].items():
+        for key in spec or {}:
+            if key not in POINT_KEYS:
+                raise _unknown(path, f"point {name}: ", key, POINT_KEYS)
+    if sweep["reference"] not in sweep["points"]:
+        raise SweepError(f"{path}: reference '{sweep['reference']}' is not one of the points "
+                         f"({', '.join(sweep['points'])})")
+    sweep["path"] = os.path.abspath(path)
+    return sweep
+
+
+class Point(CaseRun):
+    """One point of the sweep: the tutorial with the point's changes, under root/runs/<name>."""
+
+    def __init__(self, name, spec, sweep, root):
+        super().__init__(name, os.path.join(root, "runs", name))
+        self.spec, self.sweep = spec or {}, sweep
+        self.template = os.path.join(TUTORIALS, sweep["template"])
+        self.ranks = int(self.spec.get("ranks", 1))
+
+    def command(self):
+        if self.ranks > 1:
+            return ["mpirun", "-np", str(self.ranks), self.solver, "-parallel"]
+        return [self.solver]
+
+    def complete_fields(self):
+        # a parallel point restarts from its beginning (its checkpoints are per processor)
+        return ("tfdem.checkpoint",) if self.ranks == 1 else ("no-resume",)
+
+    def prepare(self, end_time):
+        template = Case(self.template)
+        case = template.copy_to(self.case.path)
+        self.set_status(state="prepared", end_time=end_time)
+        case.set_control(endTime=end_time, writeInterval=end_time, startFrom="startTime", writePrecision=17)
+        self._time_steps(case)
+        refine = self.spec.get("refine", [1, 1])
+        for axis, factor in enumerate(refine):
+            if factor != 1:
+                case.scale_cells(axis, factor)
+        for key, value in self.spec.get("coupling", {}).items():
+            case.set_coupling(key, value)
+        for key, value in self.spec.get("fv_solution", {}).items():
+            set_nested_entry(case.file("system", "fvSolution"), key, value)
+        case.set_coupling("output.statistics_interval", self.sweep["statistics_interval"])
+        shutil.copy(self._packing(), case.file(case.dem_command("read_data")[1]))
+        run(["blockMesh"], case.path, "log.blockMesh")
+        write_bed_probes(case, self.sweep["field_interval"], self.sweep["statistics_interval"])
+        if self.ranks > 1:
+            decompose(case.path, (self.ranks, 1, 1))
+
+    def _packing(self):
+        """The initial packed bed (sweep `packing`: its file and the script that makes it, both
+        relative to tutorials/), made once."""
+        packing = self.sweep["packing"]
+        path = os.path.join(TUTORIALS, packing["file"])
+        if not os.path.isfile(path):
+            maker = os.path.join(TUTORIALS, packing["make"])
+            run([maker], os.path.dirname(maker), "log.pareto_packing")
+        return path
+
+    def _time_steps(self, case):
+        """DEM step and gas step of the point; the coupling interval is their ratio, which must
+        be a whole number."""
+        dem = float(self.spec.get("dem_time_step", case.dem_time_step()))
+        gas = float(self.spec.get("gas_time_step", case.delta_t()))
+        interval = gas / dem
+        if abs(interval - round(interval)) > 1e-6 * interval or round(interval) < 1:
+            raise SweepError(f"point {self.name}: gas_time_step {gas:g} s is not a whole number of "
+                             f"dem_time_step {dem:g} s ({interval:.6g}); choose steps whose ratio is whole")
+        script = case.dem_script()
+        text = open(script).read()
+        text, n = re.subn(r"(?m)^timestep\s+\S+", f"timestep        {dem:.12g}", text)
+        if n != 1:
+            raise SweepError(f"{script}: expected one 'timestep' command, found {n}")
+        open(script, "w").write(text)
+        case.set_coupling("dem.coupling_interval", int(round(interval)))
+        case.set_control(deltaT=f"{gas:.12g}")
+
+
+def set_nested_entry(path, dotted, value):
+    """Set entry `a.b.c` of an OpenFOAM dictionary file (sub-dictionaries a, then b; entry c)."""
+    *parents, key = dotted.split(".")
+    text = open(path).read()
+    start, end = 0, len(text)
+    for name in parents:
+        found = re.compile(rf"(?m)^\s*\"?{re.escape(name)}\"?\s*\{{").search(text, start, end)
+        if not found:
+            raise SweepError(f"{path}: no sub-dictionary '{name}' for '{dotted}'")
+        depth, i = 1, found.end()
+        while depth:
+            depth += {"{": 1, "}": -1}.get(text[i], 0)
+            i += 1
+        start, end = found.end(), i - 1
+    entry = re.compile(rf"(?<![\w$.]){re.escape(key)}\s+[^;{{}}]*;").search(text, start, end)
+    if not entry:
+        raise SweepError(f"{path}: no entry '{dotted}'")
+    text = text[:entry.start()] + f"{key} {value};" + text[entry.end():]
+    open(path, "w").write(text)
+
+
+def points_of(sweep, root, names=()):
+    unknown = [n for n in names if n not in sweep["points"]]
+    if unknown:
+        raise SweepError(f"unknown point(s) {', '.join(unknown)}; {sweep['path']} has: {', '.join(sweep['points'])}")
+    return [Point(n, s, sweep, root) for n, s in sweep["points"].items() if not names or n in names]
+
+
+# Report ------------------------------------------------------------------------------------
+def report(sweep, points, end_time, out):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    scale = end_time / sweep["end_time"]
+    start, end = (w * scale for w in sweep["window"])
+    batch = sweep["batch"] * scale
+    finished = [p for p in points if p.done()]
+    by_name = {p.name: p for p in finished}
+    if sweep["reference"] not in by_name:
+        raise SweepError(f"the reference point '{sweep['reference']}' has not finished: run it first")
+    outputs = {p.name: BedOutputs(p.case) for p in finished}
+    metrics = {}
+    for name, d in outputs.items():
+        t, h = d.mean_height()
+        metrics[name] = scalar_metrics(d.p_t, d.dp, t, h, start, end, batch)
+    ref = sweep["reference"]
+    rows = []
+    for p in finished:
+        row = {"point": p.name, "wall_seconds": p.wall_seconds(), "cpu_seconds": p.cpu_seconds(), "ranks": p.ranks}
+        for metric in METRICS[:-1]:
+            row[metric] = metrics[p.name][metric]["value"]
+            row[f"{metric}_stderr"] = metrics[p.name][metric]["error"]
+            for k, v in scalar_error(metrics[p.name][metric], metrics[ref][metric]).items():
+                row[f"{metric}_{k}"] = v
+        for k, v in map_error(outputs[p.name], outputs[ref], start, end).items():
+            row[f"solids_map_{k}"] = v
+        rows.append(row)
+    os.makedirs(out, exist_ok=True)
+    with open(os.path.join(out, "pareto.csv"), "w", newline="") as f:
+        writer = csv.DictWriter(f, fieldnames=list(rows[0]))
+        writer.writeheader()
+        writer.writerows(rows)
+    others = [r for r in rows if r["point"] != ref]
+    for metric in METRICS:
+        fig, ax = plt.subplots(figsize=(6, 4))
+        costs = [r["wall_seconds"] for r in others]
+        errors = [r[f"{metric}_error"] for r in others]
+        ax.errorbar(costs, errors, yerr=[2 * r[f"{metric}_sigma"] for r in others], fmt="o", capsize=3)
+        for r in others:
+            ax.annotate(r["point"], (r["wall_seconds"], r[f"{metric}_error"]), fontsize=7,
+                        xytext=(3, 3), textcoords="offset points")
+        front = sorted(pareto_front(costs, errors), key=lambda i: costs[i])
+        ax.plot([costs[i] for i in front], [errors[i] for i in front], "r-", lw=1, label="Pareto front")
+        ax.set_xlabel("wall time (s)")
+        ax.set_ylabel(f"|{metric} - reference| (bars: 2 sigma)")
+        ax.set_title(f"{os.path.basename(sweep['path'])}: {metric}, {start:g}-{end:g} s", fontsize=9)
+        ax.legend(fontsize=7)
+        fig.tight_layout()
+        fig.savefig(os.path.join(out, f"pareto_{metric}.png"), dpi=110)
+        plt.close(fig)
+    write_table(sweep, rows, ref, start, end, out)
+    print(f"report: {len(rows)} points -> {out}")
+    return rows
+
+
+def write_table(sweep, rows, ref, start, end, out):
+    lines = [f"# Speed against error: {os.path.basename(sweep['path'])}", "",
+             f"Template `{sweep['template']}`, averages over {start:g}-{end:g} s, reference point `{ref}`. "
+             "Error = |point - reference|; `~` = within noise (below 2 sigma of batch means; for the map, "
+             "below the L1 between the two halves of the window).", "",
+             "| point | wall (s) | Δp mean (Pa) | Δp std (Pa) | mean height (cm) | frequency (Hz) | solids map L1 |",
+             "|---|---|---|---|---|---|---|"]
+    for r in rows:
+        cells = []
+        for metric, scale in (("dp20_mean", 1), ("dp20_std", 1), ("mean_height", 100), ("dp20_frequency", 1),
+                              ("solids_map", 1)):
+            if metric == "solids_map":
+                text = f"{r['solids_map_error']:.3g}"
+            else:
+                text = f"{r[metric] * scale:.4g} ± {r[f'{metric}_stderr'] * scale:.2g}"
+                if r["point"] != ref:
+                    text += f" (Δ {r[f'{metric}_error'] * scale:.2g})"
+            if r["point"] != ref and r[f"{metric}_within_noise"]:
+                text += " ~"
+            cells.append(text)
+        lines.append(f"| {r['point']} | {r['wall_seconds']:.0f} | " + " | ".join(cells) + " |")
+    lines += ["", *(f"![{m}](pareto_{m}.png)" for m in METRICS), ""]
+    with open(os.path.join(out, "README.md"), "w") as f:
+        f.write("\n".join(lines))
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("command", choices=("run", "report"))
+    parser.add_argument("sweep", help="sweep definition (bench/pareto/<case>.yaml)")
+    parser.add_argument("--end-time", type=float, default=None, help="simulated seconds per point (default: the sweep's; "
+                        "the window and batches scale with it)")
+    parser.add_argument("--jobs", type=int, default=1, help="points side by side (default 1)")
+    parser.add_argument("--root", default=None, help="folder for runs/ and report/ (default bench/pareto/<sweep name>)")
+    parser.add_argument("--points", default="", help="comma-separated point names (default: all)")
+    args = parser.parse_args(argv)
+    try:
+        sweep = load_sweep(args.sweep)
+        end_time = args.end_time or sweep["end_time"]
+        root = args.root or os.path.join(HERE, os.path.splitext(os.path.basename(args.sweep))[0])
+        points = points_of(sweep, root, [n for n in args.points.split(",") if n])
+        if args.command == "run":
+            return 0 if run_batch(points, end_time, args.jobs) else 1
+        report(sweep, points, end_time, os.path.join(root, "report"))
+        return 0
+    except (SweepError, BatchError, RunError) as e:
+        print(f"pareto.py: {e}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        return 130
+
+
+if __name__ == "__main__":
+    sys.exit(main())

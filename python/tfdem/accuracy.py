@@ -1,0 +1,82 @@
+"""Errors of a run's bed metrics against a reference run, separated from statistical noise
+(the speed-against-error sweeps, bench/pareto).
+
+Each scalar metric is a time average over a window with its standard error from batch means;
+a point's error is |value - reference| and it is within noise below twice the combined error
+sqrt(e^2 + e_ref^2). The solids-fraction map's error is the L1 of the two time-averaged maps
+on the coarser grid; its noise floor is the larger of the two runs' L1 between the halves of
+the window.
+"""
+import math
+
+import numpy
+
+from tfdem.bed import l1_difference, to_grid
+from tfdem.stats import batch_means, dominant_frequency, window
+
+METRICS = ("dp20_mean", "dp20_std", "mean_height", "dp20_frequency", "solids_map")
+
+
+def batch_stat(t, y, start, end, batch):
+    """{'value', 'error'}: batch-means mean and standard error of y over [start, end]."""
+    m, e, _ = batch_means(list(t), list(y), start, end, batch)
+    return {"value": m, "error": e}
+
+
+def batch_std(t, y, start, end, batch):
+    """{'value', 'error'}: the mean over batches of y's standard deviation within each batch, and
+    its standard error (the fluctuation amplitude, measured the same way at every point)."""
+    stds, k = [], 0
+    while start + (k + 1) * batch <= end + 1e-9:
+        values = window(list(t), list(y), start + k * batch, start + (k + 1) * batch - 1e-9)
+        if len(values) > 1:
+            m = sum(values) / len(values)
+            stds.append(math.sqrt(sum((v - m) ** 2 for v in values) / len(values)))
+        k += 1
+    if not stds:
+        raise ValueError(f"no samples in [{start}, {end}]")
+    m = sum(stds) / len(stds)
+    e = math.sqrt(sum((s - m) ** 2 for s in stds) / len(stds) / (len(stds) - 1)) if len(stds) > 1 else float("nan")
+    return {"value": m, "error": e}
+
+
+def scalar_metrics(dp_t, dp, height_t, height, start, end, batch):
+    """The scalar metrics of one run over [start, end]."""
+    dp_t, dp = numpy.asarray(dp_t), numpy.asarray(dp)
+    pick = (dp_t >= start - 1e-9) & (dp_t <= end + 1e-9)
+    return {"dp20_mean": batch_stat(dp_t, dp, start, end, batch),
+            "dp20_std": batch_std(dp_t, dp, start, end, batch),
+            "mean_height": batch_stat(height_t, height, start, end, batch),
+            "dp20_frequency": {"value": dominant_frequency(dp_t[pick], dp[pick]), "error": 1.0 / (end - start)}}
+
+
+def scalar_error(point, reference):
+    """{'error', 'sigma', 'within_noise'} of a point's metric against the reference's."""
+    error = abs(point["value"] - reference["value"])
+    sigma = math.sqrt(point["error"] ** 2 + reference["error"] ** 2)
+    return {"error": error, "sigma": sigma, "within_noise": bool(error < 2 * sigma)}
+
+
+def map_error(point, reference, start, end):
+    """L1 of the time-averaged solids-fraction maps (on the coarser grid) and its noise floor:
+    the larger of the two runs' L1 between the first and second half of the window."""
+    middle = 0.5 * (start + end)
+
+    def average(d, a, b):
+        return d.field_average(d.solids, a, b)
+
+    coarse = reference if reference.solids.shape[1] <= point.solids.shape[1] else point
+    shape = coarse.shape
+    error = l1_difference(to_grid(average(point, start, end), shape), to_grid(average(reference, start, end), shape))
+    noise = max(l1_difference(to_grid(average(d, start, middle), shape), to_grid(average(d, middle, end), shape))
+                for d in (point, reference))
+    return {"error": error, "sigma": noise / 2, "within_noise": bool(error < noise)}
+
+
+def pareto_front(costs, errors):
+    """Indices of the points no other point beats in both cost and error (ties kept)."""
+    front = []
+    for i, (c, e) in enumerate(zip(costs, errors)):
+        if not any((c2 <= c and e2 <= e) and (c2 < c or e2 < e) for c2, e2 in zip(costs, errors)):
+            front.append(i)
+    return front
