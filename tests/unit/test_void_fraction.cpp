@@ -156,6 +156,28 @@ TEST(VoidFraction, PorousCubeSplitAcrossOneFace) {
   EXPECT_NEAR(w.weights[1], (0.5 * a * dp + s) / (a * dp), 1e-14);
 }
 
+// Every method maps a bed and its mirror image (x -> W - x) to mirrored cells: no side is
+// favoured, in the interior or at the walls (the 1 x 1 cm cells of the jet bed's fine grid,
+// 4 mm particles under the 2-D rule, cubes of 2.5 and 5 d_p reaching through the walls).
+TEST(VoidFraction, MirroredBedMapsToMirroredCells) {
+  const double dp = 0.004;
+  const CartesianGrid g = grid(0.01, 0.01, dp, 15, 20, 1);
+  const Cloud c = lattice_cloud(g, 0.0045, dp, dp, true, 7);
+  Cloud mirror = c;
+  for (std::size_t i = 0; i < c.diameter.size(); ++i) mirror.position[3 * i] = g.upper(0) - c.position[3 * i];
+  std::vector<double> cell_volume(g.cell_count(), 0.01 * 0.01 * dp);
+  for (auto m : {VoidFractionMethod::Centroid, VoidFractionMethod::Divided, VoidFractionMethod::PorousCube})
+    for (double a : {2.5, 5.0}) {
+      const VoidFractionOptions o = options(m, true, a);
+      const VoidFraction f = map_void_fraction(compute_weights(g, c.view(), o), c.view(), cell_volume, 0.0);
+      const VoidFraction fm = map_void_fraction(compute_weights(g, mirror.view(), o), mirror.view(), cell_volume, 0.0);
+      for (int j = 0; j < g.count[1]; ++j)
+        for (int i = 0; i < g.count[0]; ++i)
+          EXPECT_NEAR(f.solid_volume[g.flat(i, j, 0)], fm.solid_volume[g.flat(g.count[0] - 1 - i, j, 0)], 1e-18)
+              << name(m) << " a = " << a << " cell " << i << ", " << j;
+    }
+}
+
 // Divided: a particle far from faces stays in its cell; one centred on a face splits 50/50.
 TEST(VoidFraction, DividedSplitsSymmetricallyAcrossAFace) {
   const CartesianGrid g = grid(0.01, 0.01, 0.01, 2, 1, 1);
