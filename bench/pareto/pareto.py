@@ -31,7 +31,7 @@ from tfdem import TUTORIALS
 from tfdem.batch import BatchError, CaseRun, run_batch
 from tfdem.accuracy import METRICS, map_error, pareto_front, scalar_error, scalar_metrics
 from tfdem.bed import BedOutputs, write_bed_probes
-from tfdem.case import Case
+from tfdem.case import Case, CaseError, set_sub_dict_entry
 from tfdem.run import RunError, decompose, run
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -105,7 +105,7 @@ class Point(CaseRun):
         for key, value in self.spec.get("coupling", {}).items():
             case.set_coupling(key, value)
         for key, value in self.spec.get("fv_solution", {}).items():
-            set_nested_entry(case.file("system", "fvSolution"), key, value)
+            set_sub_dict_entry(case.file("system", "fvSolution"), key, value)
         case.set_coupling("output.statistics_interval", self.sweep["statistics_interval"])
         shutil.copy(self._packing(), case.file(case.dem_command("read_data")[1]))
         run(["blockMesh"], case.path, "log.blockMesh")
@@ -140,27 +140,6 @@ class Point(CaseRun):
         open(script, "w").write(text)
         case.set_coupling("dem.coupling_interval", int(round(interval)))
         case.set_control(deltaT=f"{gas:.12g}")
-
-
-def set_nested_entry(path, dotted, value):
-    """Set entry `a.b.c` of an OpenFOAM dictionary file (sub-dictionaries a, then b; entry c)."""
-    *parents, key = dotted.split(".")
-    text = open(path).read()
-    start, end = 0, len(text)
-    for name in parents:
-        found = re.compile(rf"(?m)^\s*\"?{re.escape(name)}\"?\s*\{{").search(text, start, end)
-        if not found:
-            raise SweepError(f"{path}: no sub-dictionary '{name}' for '{dotted}'")
-        depth, i = 1, found.end()
-        while depth:
-            depth += {"{": 1, "}": -1}.get(text[i], 0)
-            i += 1
-        start, end = found.end(), i - 1
-    entry = re.compile(rf"(?<![\w$.]){re.escape(key)}\s+[^;{{}}]*;").search(text, start, end)
-    if not entry:
-        raise SweepError(f"{path}: no entry '{dotted}'")
-    text = text[:entry.start()] + f"{key} {value};" + text[entry.end():]
-    open(path, "w").write(text)
 
 
 def points_of(sweep, root, names=()):
@@ -278,7 +257,7 @@ def main(argv=None):
             return 0 if run_batch(points, end_time, args.jobs) else 1
         report(sweep, points, end_time, os.path.join(root, "report"), args.cost)
         return 0
-    except (SweepError, BatchError, RunError) as e:
+    except (SweepError, BatchError, CaseError, RunError) as e:
         print(f"pareto.py: {e}", file=sys.stderr)
         return 2
     except KeyboardInterrupt:

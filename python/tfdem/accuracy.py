@@ -12,7 +12,7 @@ import math
 import numpy
 
 from tfdem.bed import l1_difference, to_grid
-from tfdem.stats import batch_means, dominant_frequency, window
+from tfdem.stats import batch_means, batches, dominant_frequency, mean_of_batches, std
 
 METRICS = ("dp20_mean", "dp20_std", "mean_height", "dp20_frequency", "solids_map")
 
@@ -26,17 +26,10 @@ def batch_stat(t, y, start, end, batch):
 def batch_std(t, y, start, end, batch):
     """{'value', 'error'}: the mean over batches of y's standard deviation within each batch, and
     its standard error (the fluctuation amplitude, measured the same way at every point)."""
-    stds, k = [], 0
-    while start + (k + 1) * batch <= end + 1e-9:
-        values = window(list(t), list(y), start + k * batch, start + (k + 1) * batch - 1e-9)
-        if len(values) > 1:
-            m = sum(values) / len(values)
-            stds.append(math.sqrt(sum((v - m) ** 2 for v in values) / len(values)))
-        k += 1
+    stds = [std(values) for values in batches(list(t), list(y), start, end, batch) if len(values) > 1]
     if not stds:
         raise ValueError(f"no samples in [{start}, {end}]")
-    m = sum(stds) / len(stds)
-    e = math.sqrt(sum((s - m) ** 2 for s in stds) / len(stds) / (len(stds) - 1)) if len(stds) > 1 else float("nan")
+    m, e = mean_of_batches(stds)
     return {"value": m, "error": e}
 
 

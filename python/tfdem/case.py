@@ -75,22 +75,44 @@ def remove_dict_entry(path, key):
     _write(path, text)
 
 
-def sub_dict(text, name, path="dictionary"):
-    """Body (between the braces) of the first sub-dictionary ``name { ... }`` of OpenFOAM text
-    (comments removed), nested braces included."""
-    text = _strip_comments(text)
-    found = re.search(rf"(?<![\w.]){re.escape(name)}\s*\{{", text)
+def _sub_dict_span(text, name, path, start=0, end=None):
+    """(first, last) index of the body (between the braces) of the first sub-dictionary
+    ``name { ... }`` of text[start:end], nested braces included."""
+    end = len(text) if end is None else end
+    found = re.compile(rf"(?<![\w.]){re.escape(name)}\s*\{{").search(text, start, end)
     if not found:
         raise CaseError(f"{path}: no sub-dictionary '{name}'")
-    depth, start = 1, found.end()
-    for i in range(start, len(text)):
+    depth = 1
+    for i in range(found.end(), end):
         if text[i] == "{":
             depth += 1
         elif text[i] == "}":
             depth -= 1
             if depth == 0:
-                return text[start:i]
+                return found.end(), i
     raise CaseError(f"{path}: sub-dictionary '{name}' is not closed")
+
+
+def sub_dict(text, name, path="dictionary"):
+    """Body (between the braces) of the first sub-dictionary ``name { ... }`` of OpenFOAM text
+    (comments removed), nested braces included."""
+    text = _strip_comments(text)
+    first, last = _sub_dict_span(text, name, path)
+    return text[first:last]
+
+
+def set_sub_dict_entry(path, dotted, value):
+    """Set entry `a.b.c` of an OpenFOAM dictionary file in place (sub-dictionaries a, then b;
+    entry c, which must exist), keeping the rest of the text."""
+    *parents, key = dotted.split(".")
+    text = _read(path)
+    start, end = 0, len(text)
+    for name in parents:
+        start, end = _sub_dict_span(text, name, f"{path} ('{dotted}')", start, end)
+    entry = re.compile(rf"(?<![\w$.]){re.escape(key)}\s+[^;{{}}]*;").search(text, start, end)
+    if not entry:
+        raise CaseError(f"{path}: no entry '{dotted}'")
+    _write(path, text[:entry.start()] + f"{key} {value};" + text[entry.end():])
 
 
 def _points(text):

@@ -61,23 +61,32 @@ def fit_linear_quadratic(x, y):
     return (y1 * s22 - y2 * s12) / det, (s11 * y2 - s12 * y1) / det
 
 
+def batches(t, y, start, end, batch):
+    """The samples of y in each of the round((end - start) / batch) consecutive batches of
+    `batch` seconds from `start`, as lists (a batch may be empty)."""
+    count = int(round((end - start) / batch))
+    return [window(t, y, start + k * batch, start + (k + 1) * batch - 1e-9) for k in range(count)]
+
+
+def mean_of_batches(values):
+    """Mean of per-batch values and its standard error, the values' standard deviation over
+    sqrt(n - 1) (nan with fewer than two)."""
+    m = mean(values)
+    if len(values) < 2:
+        return m, float("nan")
+    return m, std(values) / math.sqrt(len(values) - 1)
+
+
 def batch_means(t, y, start, end, batch):
     """Mean of y over [start, end] with its standard error from batch means: the window is cut
     into batches of `batch` seconds (longer than the signal's correlation time), the error is
     the standard deviation of the batch means over sqrt(batches - 1). Returns (mean, standard
     error, number of batches); the error is nan with fewer than two batches."""
-    count = int(round((end - start) / batch))
-    means = []
-    for k in range(count):
-        values = window(t, y, start + k * batch, start + (k + 1) * batch - 1e-9)
-        if values:
-            means.append(mean(values))
+    means = [mean(values) for values in batches(t, y, start, end, batch) if values]
     if not means:
         raise ValueError(f"no samples in [{start}, {end}]")
-    m = mean(means)
-    if len(means) < 2:
-        return m, float("nan"), len(means)
-    return m, std(means) / math.sqrt(len(means) - 1), len(means)
+    m, error = mean_of_batches(means)
+    return m, error, len(means)
 
 
 def dominant_frequency(t, y):

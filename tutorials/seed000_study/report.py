@@ -425,7 +425,7 @@ class Report:
         for name, values in runs.items():
             lines.append(f"| {name} | {values['wall_seconds']:.0f} s | {values['cpu_seconds']:.0f} s | "
                          f"{values['cpu_seconds'] / self.end_time:.1f} s |")
-        lines += [f"", f"Paper (one 2.0 GHz Opteron 270 core, 20 s of the jet bed): TF-DEM "
+        lines += ["", f"Paper (one 2.0 GHz Opteron 270 core, 20 s of the jet bed): TF-DEM "
                        f"{PAPER['cost_tfdem_jet']:.0f} s, TFM {PAPER['cost_tfm_jet']:.0f} s.", "", "## Figures", ""]
         lines += [f"![{f}]({f})" for f in self.figures]
         with open(os.path.join(self.out, "README.md"), "w") as f:

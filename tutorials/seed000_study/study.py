@@ -23,7 +23,7 @@ import yaml
 from tfdem import TUTORIALS
 from tfdem.batch import BatchError, CaseRun, clock, run_batch
 from tfdem.bed import write_bed_probes
-from tfdem.case import Case, set_dict_entries
+from tfdem.case import Case, CaseError, set_dict_entries
 from tfdem.run import RunError, environment, run
 
 STUDY_DIR = os.path.dirname(os.path.abspath(__file__))
@@ -189,7 +189,7 @@ def main(argv=None):
         import report
         report.write_report(study, runs, end_time, os.path.join(args.root, "report"))
         return 0
-    except (StudyError, BatchError, RunError) as e:
+    except (StudyError, BatchError, CaseError, RunError) as e:
         print(f"study.py: {e}", file=sys.stderr)
         return 2
     except KeyboardInterrupt:
