@@ -66,11 +66,28 @@ def load_sweep(path):
         for key in spec or {}:
             if key not in POINT_KEYS:
                 raise _unknown(path, f"point {name}: ", key, POINT_KEYS)
+        _check_point(path, name, spec or {})
     if sweep["reference"] not in sweep["points"]:
         raise SweepError(f"{path}: reference '{sweep['reference']}' is not one of the points "
                          f"({', '.join(sweep['points'])})")
     sweep["path"] = os.path.abspath(path)
     return sweep
+
+
+def _check_point(path, name, spec):
+    """The point's numbers: steps positive seconds, ranks and refinement positive whole numbers."""
+    def bad(key, expected):
+        return SweepError(f"{path}: point {name}: {key} must be {expected}, got {spec[key]!r}")
+
+    for key in ("dem_time_step", "gas_time_step"):
+        if key in spec and not (isinstance(spec[key], (int, float)) and spec[key] > 0):
+            raise bad(key, "a positive number of seconds")
+    if "ranks" in spec and not (isinstance(spec["ranks"], int) and spec["ranks"] >= 1):
+        raise bad("ranks", "a whole number >= 1")
+    refine = spec.get("refine")
+    if refine is not None and not (isinstance(refine, list) and len(refine) == 2
+                                   and all(isinstance(f, int) and f >= 1 for f in refine)):
+        raise bad("refine", "[x, y], two whole numbers >= 1")
 
 
 class Point(CaseRun):

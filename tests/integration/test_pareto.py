@@ -7,7 +7,8 @@
    dominant frequency 2 Hz; solids maps of 0.5 and 0.4 everywhere: L1 0.1 on the coarse grid,
    also when the point's map is on a twice finer grid; the Pareto front of three (cost, error)
    pairs.
-2. A tiny sweep (the bubbling bed, 2 points, 0.05 s) runs and writes its CSV, plots and table.
+2. A tiny sweep (the bubbling bed, 2 points, 0.05 s) runs and writes its CSV, plots and table;
+   a misspelt point key and a negative DEM step are refused with a message naming them.
 """
 import csv
 import math
@@ -89,6 +90,12 @@ def check_tiny_sweep(checks):
                           stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     checks.true("a misspelt point key is named with the nearest one",
                 proc.returncode == 2 and "unknown key 'refine_y' (did you mean 'refine'?)" in proc.stdout)
+    yaml.safe_dump(dict(sweep, points={"reference": {}, "coarse": {"dem_time_step": -1}}), open(path, "w"))
+    proc = subprocess.run(["/usr/bin/python3", PARETO, "run", path, "--root", root], env=environment(),
+                          stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    checks.true("a negative DEM step is named with what is expected",
+                proc.returncode == 2 and "point coarse: dem_time_step must be a positive number of seconds, got -1"
+                in proc.stdout)
 
 
 def main():
