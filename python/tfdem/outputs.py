@@ -245,3 +245,16 @@ def log_numbers(path, pattern):
         for found in re.finditer(pattern, f.read()):
             pass
     return [float(g) for g in found.groups()] if found else None
+
+
+TIMING_PARTS = ("DEM", "locate+map", "forces", "gas", "statistics", "checkpoints")
+
+
+def solver_timing(log):
+    """{part: seconds} of the solver's last `TFDEM timing:` line (the first rank's wall time in
+    each part); OutputError when the log has none (the run did not finish)."""
+    pattern = r"TFDEM timing: " + r", ".join(re.escape(p) + r" (\S+) s" for p in TIMING_PARTS)
+    found = log_numbers(log, pattern)
+    if found is None:
+        raise OutputError(f"{log}: no 'TFDEM timing:' line (the run did not finish)")
+    return dict(zip(TIMING_PARTS, found))
