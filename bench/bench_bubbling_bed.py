@@ -25,7 +25,7 @@ import sys
 
 from tfdem import BUILD_DIR, TUTORIALS
 from tfdem.case import Case
-from tfdem.outputs import log_numbers
+from tfdem.outputs import OutputError, log_numbers, solver_timing
 from tfdem.run import RunError, run as run_program, write_decompose_dict
 
 TUTORIAL = os.path.join(TUTORIALS, "bubbling_bed")
@@ -84,7 +84,10 @@ def coupled_and_replay(case, ranks, interval, intervals):
     """One coupled run and its DEM-only replay: (coupled split dict, replay DEM seconds)."""
     solver = ["tfdemFoam", "-recordForces", "forces.bin"] + (["-parallel"] if ranks > 1 else [])
     log = run(solver, case, "log.tfdemFoam", ranks)
-    dem, mapping, forces, gas = number(r"TFDEM timing: DEM (\S+) s, locate\+map (\S+) s, forces (\S+) s, gas (\S+) s", log)
+    try:
+        timing = solver_timing(log)
+    except OutputError as e:
+        sys.exit(str(e))
     coupled_positions = number(r"TFDEM positions: sum of x, y, z over particles = (\S+) (\S+) (\S+)", log)
     script = os.path.basename(Case(case).dem_script())
     replay_log = run([REPLAY, script, "forces.bin", str(interval), str(intervals)], case, "log.replay.out", ranks)
@@ -94,7 +97,7 @@ def coupled_and_replay(case, ranks, interval, intervals):
     if same > 1e-12:
         sys.exit(f"{case}: the replay ends {same:.1e} (relative) away from the coupled run's particle"
                  " coordinates: not the same steps and contacts")
-    split = {"DEM": dem, "locate+map": mapping, "forces": forces, "gas": gas}
+    split = {part: timing[part] for part in ("DEM", "locate+map", "forces", "gas")}
     return split, replay_dem
 
 
