@@ -1,12 +1,14 @@
 """The speed-against-error tool (bench/pareto/pareto.py) and its errors (tfdem.accuracy).
 
 1. Its error computation on hand-made series with known answers: Delta p = c + 10 sin(2 pi 2 t)
-   sampled every 0.01 s, c = 100 Pa (point) and 90 Pa (reference), window 0-4 s, 0.5 s batches
-   of whole periods: mean error 10 Pa with zero batch-means error (not within noise), the
-   fluctuation (mean of the batches' standard deviations) 10/sqrt(2) = 7.0711 Pa at both, the
-   dominant frequency 2 Hz; solids maps of 0.5 and 0.4 everywhere: L1 0.1 on the coarse grid,
-   also when the point's map is on a twice finer grid; the Pareto front of three (cost, error)
-   pairs.
+   + 3 (-1)^n sampled every 0.01 s (n the sample; a jitter at 50 Hz), c = 100 Pa (point) and
+   90 Pa (reference), window 0.5-3.49 s (300 samples), 0.5 s batches of whole periods: mean
+   error 10 Pa with zero batch-means error (not within noise); in the bed band (5-sample
+   running means, 50 ms) the sine keeps G = (1 + 2 cos w + 2 cos 2w) / 5 of its amplitude
+   (w = 0.04 pi per sample) and the jitter 3/5, so the band's fluctuation is
+   sqrt((10 G)^2 / 2 + 0.6^2) and the jitter's sqrt((10 (1 - G))^2 / 2 + 2.4^2); the dominant
+   frequency 2 Hz; solids maps of 0.5 and 0.4 everywhere: L1 0.1 on the coarse grid, also when
+   the point's map is on a twice finer grid; the Pareto front of three (cost, error) pairs.
 2. A tiny sweep (the bubbling bed, 2 points, 0.05 s) runs and writes its CSV, plots and table;
    a misspelt point key and a negative DEM step are refused with a message naming them.
 """
@@ -40,15 +42,20 @@ class HandMap:
 
 def check_errors(checks):
     t = numpy.arange(0, 400) * 0.01
-    wave = 10 * numpy.sin(2 * math.pi * 2 * t)
+    wave = 10 * numpy.sin(2 * math.pi * 2 * t) + 3 * (-1.0) ** numpy.arange(0, 400)
     height = numpy.full_like(t, 0.1)
-    point = accuracy.scalar_metrics(t, 100 + wave, t, height, 0.0, 4.0, 0.5)
-    reference = accuracy.scalar_metrics(t, 90 + wave, t, height, 0.0, 4.0, 0.5)
+    point = accuracy.scalar_metrics(t, 100 + wave, t, height, 0.5, 3.49, 0.5)
+    reference = accuracy.scalar_metrics(t, 90 + wave, t, height, 0.5, 3.49, 0.5)
     mean_error = accuracy.scalar_error(point["dp20_mean"], reference["dp20_mean"])
     checks.within("mean error of Delta p", mean_error["error"], 10.0, 1e-9)
     checks.within("... its sigma", mean_error["sigma"], 0.0, 1e-9)
     checks.true("... not within noise", not mean_error["within_noise"])
-    checks.within("fluctuation (batch std)", point["dp20_std"]["value"], 10 / math.sqrt(2), 1e-9)
+    w = 0.04 * math.pi
+    gain = (1 + 2 * math.cos(w) + 2 * math.cos(2 * w)) / 5
+    checks.within("fluctuation in the bed band (batch std)", point["dp20_std"]["value"],
+                  math.sqrt((10 * gain) ** 2 / 2 + 0.6 ** 2), 1e-9)
+    checks.within("jitter above the band (batch std)", point["dp20_jitter"]["value"],
+                  math.sqrt((10 * (1 - gain)) ** 2 / 2 + 2.4 ** 2), 1e-9)
     checks.within("frequency", point["dp20_frequency"]["value"], 2.0, 1e-12)
     checks.within("frequency error between the two", accuracy.scalar_error(point["dp20_frequency"],
                                                                          reference["dp20_frequency"])["error"], 0.0, 1e-12)
