@@ -36,8 +36,8 @@ from tfdem.case import Case, CaseError, set_sub_dict_entry
 from tfdem.run import RunError, decompose, run
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-SWEEP_KEYS = ("template", "packing", "end_time", "window", "batch", "field_interval", "statistics_interval", "reference",
-              "points")
+SWEEP_KEYS = ("template", "packing", "end_time", "window", "batch", "band", "field_interval", "statistics_interval",
+              "reference", "points")
 POINT_KEYS = ("dem_time_step", "gas_time_step", "refine", "coupling", "fv_solution", "ranks")
 
 
@@ -185,7 +185,7 @@ def report(sweep, points, end_time, out, cost="wall"):
     metrics = {}
     for name, d in outputs.items():
         t, h = d.mean_height()
-        metrics[name] = scalar_metrics(d.p_t, d.dp, t, h, start, end, batch)
+        metrics[name] = scalar_metrics(d.p_t, d.dp, t, h, start, end, batch, sweep["band"])
     ref = sweep["reference"]
     rows = []
     for p in finished:
@@ -231,8 +231,8 @@ def write_table(sweep, rows, ref, start, end, out):
              f"Template `{sweep['template']}`, averages over {start:g}-{end:g} s, reference point `{ref}`. "
              "Error = |point - reference|; `~` = within noise (below 2 sigma of batch means; for the map, "
              "below the L1 between the two halves of the window).", "",
-             "Δp std: the fluctuation of Δp averaged over 50 ms (the bed's motion, below 20 Hz); Δp jitter: the "
-             "rest (numerical, grows as the gas step shrinks: bench/README.md).", "",
+             f"Δp std: the fluctuation of Δp's {1000 * sweep['band']:g} ms means (the bed's motion); Δp jitter: "
+             "the rest (numerical, grows as the gas step shrinks: bench/README.md).", "",
              "| point | wall (s) | processor (s) | Δp mean (Pa) | Δp std (Pa) | Δp jitter (Pa) | mean height (cm) "
              "| frequency (Hz) | solids map L1 |",
              "|---|---|---|---|---|---|---|---|---|"]

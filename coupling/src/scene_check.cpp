@@ -45,7 +45,8 @@ void time_step_findings(const Scene &s, SceneReport &r) {
   else if (s.dem_time_step > n.recommended_time_step)
     add(r, Finding::Level::Advice, "DEM time step",
         "dt = " + num(s.dem_time_step) + " s resolves a contact with " + num(n.contact_time / s.dem_time_step) +
-            " steps; seed 000 recommends >= 50 (dt <= " + num(n.recommended_time_step) + " s)");
+            " steps; the speed-against-error sweeps recommend >= " + num(kRecommendedStepsPerContact) +
+            " (dt <= " + num(n.recommended_time_step) + " s; bench/README.md)");
   else
     add(r, Finding::Level::Ok, "DEM time step", num(n.contact_time / s.dem_time_step) + " steps per contact");
 }
@@ -175,7 +176,8 @@ std::string format_report(const SceneReport &r) {
     << "  terminal velocity u_t             " << num(n.terminal_velocity) << " m/s\n"
     << "  contact time t_c (eq. 26)         " << num(n.contact_time) << " s\n"
     << "  restitution e_n (eq. 25)          " << num(n.restitution) << "\n"
-    << "  recommended DEM step t_c/50       " << num(n.recommended_time_step) << " s\n"
+    << "  recommended DEM step t_c/" << num(kRecommendedStepsPerContact) << "       "
+    << num(n.recommended_time_step) << " s\n"
     << "  drag response time (packed bed)   " << num(n.dense_drag_time) << " s\n"
     << "  coupling time                     " << num(n.coupling_time) << " s\n"
     << "  cell size / particle diameter     " << num(n.cell_to_particle) << "\n"

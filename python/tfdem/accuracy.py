@@ -8,8 +8,8 @@ on the coarser grid; its noise floor is the larger of the two runs' L1 between t
 the window.
 
 The fluctuation of Delta p is split at the bed's time scale: `dp20_std` is the fluctuation of
-Delta p averaged over BED_BAND (bubbles, slugs, the jet's pulsation: the paper's Fig. 3),
-`dp20_jitter` the rest. The jitter is numerical: with the centroid void fraction a particle
+Delta p averaged over `band` seconds (a sweep's setting; 0.05 s keeps bubbles, slugs and the
+jet's pulsation, the paper's Fig. 3, below 20 Hz), `dp20_jitter` the rest. The jitter is numerical: with the centroid void fraction a particle
 crossing a cell face changes two cells' eps by V_p / V_cell in one gas step, which the
 pressure equation's d(eps)/dt source turns into a pressure kick of size 1 / gas step (its
 amplitude grows as the gas step shrinks, bench/README.md).
@@ -22,9 +22,6 @@ from tfdem.bed import l1_difference, to_grid
 from tfdem.stats import batch_means, batches, dominant_frequency, mean_of_batches, std
 
 METRICS = ("dp20_mean", "dp20_std", "dp20_jitter", "mean_height", "dp20_frequency", "solids_map")
-# s: running mean that keeps the bed's motion (below 1 / BED_BAND = 20 Hz; the beds bubble at
-# 2-3 Hz) and removes the gas-step jitter
-BED_BAND = 0.05
 
 
 def batch_stat(t, y, start, end, batch):
@@ -55,15 +52,15 @@ def running_mean(t, y, span):
     return t[k // 2:len(t) - k // 2], numpy.convolve(y, numpy.ones(k) / k, mode="valid")
 
 
-def scalar_metrics(dp_t, dp, height_t, height, start, end, batch):
-    """The scalar metrics of one run over [start, end]."""
+def scalar_metrics(dp_t, dp, height_t, height, start, end, batch, band):
+    """The scalar metrics of one run over [start, end] (batches and band in seconds)."""
     dp_t, dp = numpy.asarray(dp_t), numpy.asarray(dp)
     pick = (dp_t >= start - 1e-9) & (dp_t <= end + 1e-9)
-    band_t, band = running_mean(dp_t, dp, BED_BAND)
-    half = (len(dp) - len(band)) // 2
-    jitter = dp[half:half + len(band)] - band
+    band_t, in_band = running_mean(dp_t, dp, band)
+    half = (len(dp) - len(in_band)) // 2
+    jitter = dp[half:half + len(in_band)] - in_band
     return {"dp20_mean": batch_stat(dp_t, dp, start, end, batch),
-            "dp20_std": batch_std(band_t, band, start, end, batch),
+            "dp20_std": batch_std(band_t, in_band, start, end, batch),
             "dp20_jitter": batch_std(band_t, jitter, start, end, batch),
             "mean_height": batch_stat(height_t, height, start, end, batch),
             "dp20_frequency": {"value": dominant_frequency(dp_t[pick], dp[pick]), "error": 1.0 / (end - start)}}

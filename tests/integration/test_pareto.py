@@ -44,8 +44,8 @@ def check_errors(checks):
     t = numpy.arange(0, 400) * 0.01
     wave = 10 * numpy.sin(2 * math.pi * 2 * t) + 3 * (-1.0) ** numpy.arange(0, 400)
     height = numpy.full_like(t, 0.1)
-    point = accuracy.scalar_metrics(t, 100 + wave, t, height, 0.5, 3.49, 0.5)
-    reference = accuracy.scalar_metrics(t, 90 + wave, t, height, 0.5, 3.49, 0.5)
+    point = accuracy.scalar_metrics(t, 100 + wave, t, height, 0.5, 3.49, 0.5, 0.05)
+    reference = accuracy.scalar_metrics(t, 90 + wave, t, height, 0.5, 3.49, 0.5, 0.05)
     mean_error = accuracy.scalar_error(point["dp20_mean"], reference["dp20_mean"])
     checks.within("mean error of Delta p", mean_error["error"], 10.0, 1e-9)
     checks.within("... its sigma", mean_error["sigma"], 0.0, 1e-9)
@@ -70,7 +70,8 @@ def check_errors(checks):
 def check_tiny_sweep(checks):
     root = scratch("pareto_tiny")
     sweep = yaml.safe_load(open(os.path.join(SOURCE_DIR, "bench", "pareto", "bubbling_bed.yaml")))
-    sweep.update(end_time=0.05, window=[0.01, 0.05], batch=0.01, field_interval=0.005, statistics_interval=0.001,
+    sweep.update(end_time=0.05, window=[0.01, 0.05], batch=0.01, band=0.005, field_interval=0.005,
+                 statistics_interval=0.001,
                  points={"reference": sweep["points"]["reference"], "default": {}})
     path = os.path.join(root, "tiny.yaml")
     yaml.safe_dump(sweep, open(path, "w"))

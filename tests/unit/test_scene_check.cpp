@@ -71,7 +71,7 @@ TEST(SceneCheck, TerminalVelocityBalancesWeightAndDrag) {
 TEST(SceneCheck, ContactNumbersOfUniformBed) {
   const SceneReport r = check_scene(uniform_bed());
   EXPECT_NEAR(r.numbers.restitution, 0.97, 0.005);
-  EXPECT_NEAR(r.numbers.recommended_time_step, r.numbers.contact_time / 50.0, 1e-18);
+  EXPECT_NEAR(r.numbers.recommended_time_step, r.numbers.contact_time / 37.0, 1e-18);
   EXPECT_NEAR(r.numbers.cell_to_particle, 4.0, 1e-12);
   EXPECT_TRUE(has_finding(r, Finding::Level::Ok, "DEM time step"));
   EXPECT_TRUE(has_finding(r, Finding::Level::Ok, "void fraction"));
@@ -110,12 +110,12 @@ TEST(SceneCheck, OverdampedContactIsAnError) {
 }
 
 // The step rule: t_c = 1e-3 s allows dt up to 1e-4 s (10 steps), the next step up is refused
-// and the message gives t_c/50 = 2e-5 s.
+// and the message gives t_c/37 = 2.703e-5 s.
 TEST(SceneCheck, DemStepRuleAtItsLimit) {
   EXPECT_EQ(dem_step_problem(1e-3, 1e-4), "");
   const std::string problem = dem_step_problem(1e-3, 1.01e-4);
   EXPECT_NE(problem.find("above t_c/10 = 0.0001 s"), std::string::npos);
-  EXPECT_NE(problem.find("2e-05 s"), std::string::npos);
+  EXPECT_NE(problem.find("t_c/37 = 2.703e-05 s"), std::string::npos);
 }
 
 TEST(SceneCheck, RejectsNonPositiveInput) {

@@ -49,7 +49,7 @@ double effective_modulus(double young_a, double poisson_a, double young_b, doubl
 double hertz_contact_time(double effective_modulus, double effective_radius, double effective_mass,
                           double impact_speed);
 
-// DEM time step resolving a contact with `steps_per_contact` steps (seed 000: dt <= t_c/50).
+// DEM time step resolving a contact with `steps_per_contact` steps (dt = t_c / steps).
 double recommended_time_step(double contact_time, double steps_per_contact);
 
 }  // namespace tfdem::contact
