@@ -11,7 +11,8 @@ packed bed and run for the same simulated time on this machine.
 the whole bed. DPMFoam needs about 13 processor minutes for it on this machine (77,000 s per
 simulated second); longer spans scale with it (`--end-time 0.1`: about 2 h).
 
-`run` (each step skipped when done):
+Both actions first check that case/ states the tutorial's air, inflow and particles (read from
+the tutorial's files) and stop naming any that differs. `run` (each step skipped when done):
 1. the tutorial's particle lattice (constant/kinematicCloudPositions) settled into a packed
    bed by LIGGGHTS alone (in.pack);
 2. TFDEM: case/ (the tutorial's domain, mesh, gas, inflow and particles; DPMFoam's Hertz
@@ -42,7 +43,6 @@ from tfdem.run import RunError, run
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 TUTORIAL = "/usr/share/doc/openfoam-examples/examples/lagrangian/DPMFoam/Goldschmidt"
-PROBES = "((0 0 0.0025) (0 0 0.4475))"
 
 
 class PeerError(Exception):
@@ -125,6 +125,37 @@ def contact_variables(contacts):
     variables.update(pair_restitution=restitution(contacts["pair_alpha"]),
                      wall_restitution=restitution(contacts["wall_alpha"]))
     return variables
+
+
+def tutorial_value(relative, pattern):
+    """The number (or vector) the regular expression's group matches in a tutorial file."""
+    with open(os.path.join(tutorial(), relative)) as f:
+        found = re.search(pattern, f.read())
+    if not found:
+        raise PeerError(f"{TUTORIAL}/{relative}: no match for {pattern!r}")
+    return tuple(float(v) for v in found.group(1).split()) if "(" in found.group(0) else number(found.group(1))
+
+
+def check_same_scene():
+    """case/ must state the tutorial's air, inflow and particles (it writes them out as
+    OpenFOAM and coupling.yaml need them); PeerError names any that differs."""
+    case = Case(os.path.join(HERE, "case"))
+    rho, mu = case.gas()
+    diameter, density = case.particle_properties()
+    pairs = {
+        "air density (kg/m^3)": (rho, tutorial_value("constant/transportProperties", r"rho\.air\s+(\S+);")),
+        "air kinematic viscosity (m^2/s)": (mu / rho, tutorial_value("constant/transportProperties", r"\bnu\s+(\S+);")),
+        "particle density (kg/m^3)": (density, tutorial_value("constant/kinematicCloudProperties", r"rho0\s+(\S+);")),
+        "particle diameter (m)": (diameter, tutorial_value("constant/kinematicCloudProperties",
+                                                           r"fixedValueDistribution\s*\{\s*value\s+(\S+);")),
+        "inflow velocity (m/s)": (case.patch_value("U", "inlet"),
+                                  tutorial_value("0/U.air", r"inletVelocity\s+uniform\s+\(([^)]*)\)")),
+    }
+    for name, (ours, theirs) in pairs.items():
+        as_tuple = lambda v: v if isinstance(v, tuple) else (v,)
+        if not all(math.isclose(a, b, rel_tol=1e-9, abs_tol=1e-12) for a, b in zip(as_tuple(ours), as_tuple(theirs))):
+            raise PeerError(f"{HERE}/case: {name} is {ours}, DPMFoam's tutorial has {theirs}: make case/ state the "
+                            "tutorial's value")
 
 
 def lattice_positions():
@@ -211,13 +242,15 @@ def run_dpmfoam(root, end_time):
     with open(positions, "w") as f:
         f.write(header + "(\n" + "".join(f"({x:.9g} {y:.9g} {z:.9g})\n" for x, y, z in
                                          zip(atoms["x"], atoms["y"], atoms["z"])) + ")\n")
+    probes_text = "(" + " ".join(f"({x:g} {y:g} {z:g})" for x, y, z in
+                                 Case(os.path.join(HERE, "case")).probe_locations("pressure")) + ")"
     control = os.path.join(path, "system", "controlDict")
     set_dict_entries(control, endTime=end_time, writeInterval=end_time, writeFormat="ascii", startFrom="startTime")
     with open(control) as f:
         text = f.read()
     text = text.rstrip() + ("\n\nfunctions\n{\n    pressure\n    {\n        type probes;\n"
                             "        libs (\"libsampling.so\");\n        writeControl timeStep;\n"
-                            f"        writeInterval 1;\n        fields (p);\n        probeLocations {PROBES};\n"
+                            f"        writeInterval 1;\n        fields (p);\n        probeLocations {probes_text};\n"
                             "    }\n}\n")
     with open(control, "w") as f:
         f.write(text)
@@ -296,8 +329,8 @@ def report(root):
     text = ("# TFDEM against DPMFoam on DPMFoam's Goldschmidt tutorial (bench/peer_dpmfoam/peer.py)\n\n"
             + "\n".join(rows) + f"\n\nDPMFoam ÷ TFDEM processor time: **{ratio:.1f}**. Bed weight per unit area "
             f"(N m_p g / A, buoyancy removed): {weight:.0f} Pa; Ergun's pressure drop over the packed bed "
-            f"(gas fraction {eps:.3f}) at the inflow velocity: {ergun:.0f} Pa. TFDEM's restitution from DPMFoam's damping: "
-            f"{checks}.\n")
+            f"(gas fraction {eps:.3f}) at the inflow velocity: {ergun:.0f} Pa. TFDEM's restitution from "
+            f"DPMFoam's damping: {checks}.\n")
     with open(os.path.join(out, "README.md"), "w") as f:
         f.write(text)
     plot(codes, weight, os.path.join(out, "peer.png"))
@@ -329,6 +362,7 @@ def main(argv=None):
     if args.end_time <= 0:
         parser.error("--end-time must be positive")
     try:
+        check_same_scene()
         if args.action == "run":
             if args.only in (None, "tfdem"):
                 run_tfdem(args.root, args.end_time)
