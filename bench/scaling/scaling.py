@@ -115,12 +115,11 @@ def prepare(path, factor, ranks, end_time):
 
 
 def measure(root, factor, ranks, end_time):
-    """One run (skipped when its result exists): the row of FIELDS."""
+    """One run, its row of FIELDS in its folder's scaling.csv (skipped when that exists)."""
     path = os.path.join(root, f"x{factor}_ranks{ranks}")
     result = os.path.join(path, "scaling.csv")
     if os.path.isfile(result):
-        with open(result) as f:
-            return {k: float(v) for k, v in next(csv.DictReader(f)).items()}
+        return
     case, particles = prepare(path, factor, ranks, end_time)
     cells = case.grid().cell_count
     print(f"x{factor}, {ranks} rank(s): {particles} particles, {cells} cells, {end_time} s ...", flush=True)
@@ -146,7 +145,6 @@ def measure(root, factor, ranks, end_time):
         writer.writeheader()
         writer.writerow(row)
     print(f"  wall {wall:.1f} s; DEM {split['DEM']:.1f} s, gas {split['gas']:.1f} s", flush=True)
-    return row
 
 
 def rows_of(root):
