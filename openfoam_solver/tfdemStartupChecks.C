@@ -39,6 +39,17 @@ void globalRange(const std::vector<double>& values, double& lowest, double& high
     MPI_Allreduce(MPI_IN_PLACE, &highest, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
 }
 
+// particles.diameter as written in coupling.yaml's style: "d" or "[d1, d2]".
+std::string diameterList(const tfdem::CouplingConfig& config)
+{
+    std::ostringstream list;
+    const auto& d = config.particle_diameters;
+    if (d.size() != 1) list << "[";
+    for (std::size_t k = 0; k < d.size(); ++k) list << (k ? ", " : "") << d[k];
+    if (d.size() != 1) list << "]";
+    return list.str();
+}
+
 } // End anonymous namespace
 
 
@@ -77,16 +88,26 @@ void Foam::tfdemChecks::twoDimensionalDepth
         return;
     }
     const double depth = grid.spacing[2];
+    if (config.particle_diameters.size() != 1)
+    {
+        FatalErrorInFunction
+            << config.file.c_str() << ": coupling.void_fraction.two_dimensional"
+            << " is true (one particle layer, seed 000 2-D rule), which needs one"
+            << " particle size; particles.diameter lists "
+            << label(config.particle_diameters.size()) << ". For a mixture use a"
+            << " pseudo-2-D bed several diameters deep with two_dimensional: false"
+            << exit(FatalError);
+    }
     if
     (
         grid.count[2] != 1
-     || relativeDifference(depth, config.particle_diameter) > geometryTolerance
+     || relativeDifference(depth, config.particle_diameters[0]) > geometryTolerance
     )
     {
         FatalErrorInFunction
             << config.file.c_str() << ": coupling.void_fraction.two_dimensional"
             << " is true, so the mesh must be one cell deep with depth = "
-            << "particles.diameter = " << config.particle_diameter
+            << "particles.diameter = " << config.particle_diameters[0]
             << " m (seed 000 2-D rule); the mesh has " << grid.count[2]
             << " cell(s) of depth " << depth << " m" << exit(FatalError);
     }
@@ -100,13 +121,21 @@ void Foam::tfdemChecks::particles
 )
 {
     const std::size_t n = dem.local_count();
-    std::vector<double> diameter(n), density(n);
+    std::vector<double> diameter(n), density(n), sizeMismatch(n);
     for (std::size_t i = 0; i < n; ++i)
     {
         diameter[i] = 2*dem.radii()[i];
         density[i] =
             diameter[i] > 0 ? dem.masses()[i]/tfdem::sphere_volume(diameter[i]) : 0;
+        sizeMismatch[i] = std::numeric_limits<double>::infinity();
+        for (const double listed : config.particle_diameters)
+        {
+            sizeMismatch[i] =
+                std::min(sizeMismatch[i], relativeDifference(diameter[i], listed));
+        }
     }
+    double leastMismatch, worstMismatch;
+    globalRange(sizeMismatch, leastMismatch, worstMismatch);
     double dMin, dMax, rhoMin, rhoMax;
     globalRange(diameter, dMin, dMax);
     globalRange(density, rhoMin, rhoMax);
@@ -122,8 +151,7 @@ void Foam::tfdemChecks::particles
     }
     if
     (
-        relativeDifference(dMin, config.particle_diameter) > propertyTolerance
-     || relativeDifference(dMax, config.particle_diameter) > propertyTolerance
+        worstMismatch > propertyTolerance
      || relativeDifference(rhoMin, config.particle_density) > propertyTolerance
      || relativeDifference(rhoMax, config.particle_density) > propertyTolerance
     )
@@ -133,7 +161,7 @@ void Foam::tfdemChecks::particles
             << " and its data file) has diameters " << dMin << " to " << dMax
             << " m and densities " << rhoMin << " to " << rhoMax << " kg/m^3; "
             << config.file.c_str() << " gives particles.diameter = "
-            << config.particle_diameter << " m, particles.density = "
+            << diameterList(config) << " m, particles.density = "
             << config.particle_density << " kg/m^3. Make them equal."
             << exit(FatalError);
     }
@@ -370,7 +398,7 @@ void Foam::tfdemChecks::scene
     if
     (
         !dem.linear_contact(1, 1, contact) || contact.damping < 0 || inflow <= 0
-     || config.particle_diameter <= 0
+     || config.particle_diameters.empty()
     )
     {
         Info<< "TFDEM scene: not checked (it needs a linear contact with absolute damping"
@@ -378,7 +406,7 @@ void Foam::tfdemChecks::scene
         return;
     }
     tfdem::Scene s;
-    s.particle_diameter = config.particle_diameter;
+    s.particle_diameter = config.particle_diameters.front();  // smallest: shortest contact
     s.particle_density = config.particle_density;
     s.gas = config.gas;
     s.gravity = mag(g);

@@ -147,6 +147,32 @@ std::string ConfigSection::text(const std::string &key, const std::string &fallb
   return value->Scalar();
 }
 
+std::vector<double> ConfigSection::number_list(const std::string &key, double min, double max, bool required) {
+  const std::optional<YAML::Node> value = child(key, required);
+  if (!value) return {};
+  std::vector<double> out;
+  const auto add = [&](const YAML::Node &item) {
+    double v;
+    try {
+      v = item.as<double>();
+    } catch (const YAML::Exception &) {
+      problem(key, "must be a number or a list of numbers, got '" +
+                       (item.IsScalar() ? item.Scalar() : std::string("a collection")) + "'");
+      return;
+    }
+    if (v >= min && v <= max)
+      out.push_back(v);
+    else
+      problem(key, "value " + format_number(v) + " is out of range [" + format_number(min) + ", " + format_number(max) + "]");
+  };
+  if (value->IsSequence())
+    for (const auto &item : *value) add(item);
+  else
+    add(*value);
+  if (value->IsSequence() && value->size() == 0) problem(key, "is an empty list: give at least one value");
+  return out;
+}
+
 std::vector<std::string> ConfigSection::text_list(const std::string &key) {
   const std::optional<YAML::Node> value = child(key, false);
   if (!value) return {};
@@ -223,7 +249,8 @@ CouplingConfig parse_coupling_config(const std::string &file, const std::string 
   ConfigSection gas = root.section("gas", true);
   c.gas = read_gas(gas);
   ConfigSection particles = root.section("particles", true);
-  c.particle_diameter = particles.number("diameter", 0.0, 1e-9, 1.0, true);
+  c.particle_diameters = particles.number_list("diameter", 1e-9, 1.0, true);
+  std::sort(c.particle_diameters.begin(), c.particle_diameters.end());
   c.particle_density = particles.number("density", 0.0, 1e-3, 1e5, true);
   particles.reject_unknown_keys();
   ConfigSection dem = root.section("dem", true);
@@ -236,6 +263,12 @@ CouplingConfig parse_coupling_config(const std::string &file, const std::string 
   c.transfer.law = drag::law_from_name(coupling.choice("drag_law", "ergun_wen_yu", drag::law_names()));
   const std::string gas_velocity = coupling.choice("gas_velocity_at_particle", "cell", gas_at_particle_names());
   c.transfer.gas_velocity = gas_velocity == "interpolated" ? GasAtParticle::Interpolated : GasAtParticle::Cell;
+  c.transfer.polydispersity =
+      drag::polydispersity_from_name(coupling.choice("polydisperse_drag", "own_diameter", drag::polydispersity_names()));
+  if (c.transfer.polydispersity != drag::Polydispersity::OwnDiameter && c.transfer.method == TransferMethod::Averaged)
+    coupling.report("polydisperse_drag", "'" + drag::polydispersity_names()[static_cast<int>(c.transfer.polydispersity)] +
+                                             "' gives each particle its own drag, which 'averaged' (eq. 33, one drag per "
+                                             "unit volume in a cell) cannot: use transfer: per_particle_conservative");
   if (c.transfer.gas_velocity == GasAtParticle::Interpolated && c.transfer.method == TransferMethod::Averaged)
     coupling.report("gas_velocity_at_particle", "'interpolated' applies to the per-particle transfers; 'averaged' "
                                                 "uses the cell's mean gas velocity (eq. 33): remove the key or use "
@@ -272,7 +305,12 @@ std::string describe(const CouplingConfig &c) {
   s.precision(10);
   s << "# effective coupling configuration (" << c.file << ")\n"
     << "gas:\n  density: " << c.gas.density << "\n  viscosity: " << c.gas.viscosity << "\n"
-    << "particles:\n  diameter: " << c.particle_diameter << "\n  density: " << c.particle_density << "\n"
+    << "particles:\n  diameter: [" << [&c] {
+         std::ostringstream list;
+         list.precision(10);
+         for (std::size_t k = 0; k < c.particle_diameters.size(); ++k) list << (k ? ", " : "") << c.particle_diameters[k];
+         return list.str();
+       }() << "]\n  density: " << c.particle_density << "\n"
     << "dem:\n  script: " << c.dem_script << "\n  coupling_interval: " << c.coupling_interval << "\n"
     << "  outlets: [" << [&c] {
          std::string list;
@@ -282,6 +320,7 @@ std::string describe(const CouplingConfig &c) {
     << "coupling:\n  transfer: " << transfer_method_names()[static_cast<int>(c.transfer.method)] << "\n"
     << "  drag_law: " << drag::law_name(c.transfer.law) << "\n"
     << "  gas_velocity_at_particle: " << gas_at_particle_names()[static_cast<int>(c.transfer.gas_velocity)] << "\n"
+    << "  polydisperse_drag: " << drag::polydispersity_names()[static_cast<int>(c.transfer.polydispersity)] << "\n"
     << "  pressure_gradient_force: " << (c.pressure_gradient_force ? "true" : "false") << "\n"
     << "  void_fraction_time_derivative: " << (c.void_fraction_time_derivative ? "true" : "false") << "\n"
     << "  void_fraction:\n    method: " << void_fraction_method_names()[static_cast<int>(c.void_fraction.method)] << "\n"

@@ -166,4 +166,20 @@ double stokes_beta_per_solid_fraction(double diameter, const Gas &gas) {
   return 18.0 * gas.viscosity / (diameter * diameter);
 }
 
+const std::vector<std::string> &polydispersity_names() {
+  static const std::vector<std::string> names = {"own_diameter", "beetstra_2007"};
+  return names;
+}
+
+Polydispersity polydispersity_from_name(const std::string &name) {
+  return static_cast<Polydispersity>(index_of_name(name, polydispersity_names(), "polydisperse drag"));
+}
+
+double polydisperse_factor(double void_fraction, double size_ratio) {
+  const double eps_g = void_fraction, eps_s = 1.0 - eps_g, y = size_ratio;
+  constexpr double kCubicCoefficient = 0.064;  // Beetstra et al. (2007)
+  const double bracket = eps_g * y + eps_s * y * y + kCubicCoefficient * eps_g * y * y * y;
+  return bracket / ((1.0 + kCubicCoefficient * eps_g) * y * y);
+}
+
 }  // namespace tfdem::drag

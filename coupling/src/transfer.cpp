@@ -25,15 +25,29 @@ void averaged_particle_drag(const CellWeights &w, const ParticleView &p, const C
   }
 }
 
+// beta_i/eps_s of particle i (diameter d) seeing gas fraction eps and slip speed `slip`; under
+// Beetstra2007 the law is evaluated at the local Sauter mean `sauter` and corrected for y = d/<d>.
+double particle_beta_per_solid_fraction(const TransferOptions &o, double eps, double d, double sauter, double slip) {
+  if (o.polydispersity == drag::Polydispersity::OwnDiameter)
+    return drag::beta_per_solid_fraction(o.law, {eps, d, slip}, o.gas);
+  return drag::beta_per_solid_fraction(o.law, {eps, sauter, slip}, o.gas) * drag::polydisperse_factor(eps, d / sauter);
+}
+
 // Per-particle drag (eq. 29): V_i beta_i / eps_s,i (u_g,i - v_i); returns V_i beta_i/eps_s,i per particle.
-std::vector<double> per_particle_drag(const ParticleView &p, const GasAtParticles &g, const TransferOptions &o,
-                                      TransferResult &r) {
+std::vector<double> per_particle_drag(const CellWeights &w, const ParticleView &p, const CellSolidsState &cells,
+                                      const GasAtParticles &g, const TransferOptions &o, TransferResult &r) {
+  const bool polydisperse = o.polydispersity != drag::Polydispersity::OwnDiameter;
+  if (polydisperse && !cells.sauter_diameter)
+    throw std::invalid_argument("transfer: polydisperse drag needs the cells' Sauter diameters");
+  const std::vector<double> sauter =
+      polydisperse ? average_to_particles(w, cells.sauter_diameter, 1) : std::vector<double>(p.count, 0.0);
   std::vector<double> exchange_coefficient(p.count);
   for (std::size_t i = 0; i < p.count; ++i) {
     double slip[3];
     for (int a = 0; a < 3; ++a) slip[a] = g.velocity[3 * i + a] - p.velocity[3 * i + a];
     const double d = p.diameter[i];
-    exchange_coefficient[i] = sphere_volume(d) * drag::beta_per_solid_fraction(o.law, {g.void_fraction[i], d, norm3(slip)}, o.gas);
+    exchange_coefficient[i] =
+        sphere_volume(d) * particle_beta_per_solid_fraction(o, g.void_fraction[i], d, sauter[i], norm3(slip));
     for (int a = 0; a < 3; ++a) r.particle_drag[3 * i + a] = exchange_coefficient[i] * slip[a];
   }
   return exchange_coefficient;
@@ -115,6 +129,13 @@ void averaged_cell_drag(const std::vector<double> &sums, const CellGas &cells, c
   }
 }
 
+void sauter_diameters(const std::vector<double> &sums, std::size_t cell_count, double *sauter_diameter) {
+  for (std::size_t c = 0; c < cell_count; ++c) {
+    const double *s = &sums[kSolidSumComponents * c];
+    sauter_diameter[c] = s[5] > 0.0 ? s[4] / s[5] : 0.0;
+  }
+}
+
 std::vector<double> particle_drag_and_force(const CellWeights &weights, const ParticleView &particles,
                                             const CellSolidsState &cells, const GasAtParticles &at_particles,
                                             const TransferOptions &options, TransferResult &r) {
@@ -125,7 +146,7 @@ std::vector<double> particle_drag_and_force(const CellWeights &weights, const Pa
   if (options.method == TransferMethod::Averaged)
     averaged_particle_drag(weights, particles, cells, r);
   else
-    exchange_coefficient = per_particle_drag(particles, at_particles, options, r);
+    exchange_coefficient = per_particle_drag(weights, particles, cells, at_particles, options, r);
   particle_force(particles, at_particles, r);
   return exchange_coefficient;
 }
@@ -175,9 +196,11 @@ void transfer(const CellWeights &weights, const ParticleView &particles, const C
   accumulate_solid_sums(weights, particles, n, sums);
   const bool conservative = options.method == TransferMethod::PerParticleConservative;
   if (!conservative) averaged_cell_drag(sums, cells, options, r.cell_exchange_coefficient.data(), r.cell_solid_velocity.data());
-  std::vector<double> solid_volume(n);
+  std::vector<double> solid_volume(n), sauter(n);
   for (std::size_t c = 0; c < n; ++c) solid_volume[c] = sums[kSolidSumComponents * c];
-  const CellSolidsState state{cells, solid_volume.data(), r.cell_exchange_coefficient.data(), r.cell_solid_velocity.data()};
+  sauter_diameters(sums, n, sauter.data());
+  const CellSolidsState state{cells, solid_volume.data(), r.cell_exchange_coefficient.data(),
+                              r.cell_solid_velocity.data(), sauter.data()};
   const std::vector<double> exchange_coefficient =
       particle_drag_and_force(weights, particles, state, at_particles, options, r);
   if (conservative) {

@@ -60,7 +60,7 @@ int main(int argc, char **argv) {
   try {
     const tfdem::CouplingConfig config = tfdem::load_coupling_config(argv[1]);
     tfdem::Scene scene;
-    scene.particle_diameter = config.particle_diameter;
+    scene.particle_diameter = config.particle_diameters.front();  // smallest: shortest contact
     scene.particle_density = config.particle_density;
     scene.gas = config.gas;
     scene.drag_law = config.transfer.law;

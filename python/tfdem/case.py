@@ -368,12 +368,22 @@ class Case:
         set_yaml_value(self.file("coupling.yaml"), dotted, value)
 
     # Particles of coupling.yaml ------------------------------------------------------------
+    def particle_diameters(self):
+        """The particle sizes of coupling.yaml's particles.diameter (a number or a list), ascending."""
+        d = self.coupling_value("particles.diameter")
+        if d is None:
+            raise CaseError(f"{self.file('coupling.yaml')}: no particles.diameter")
+        return sorted(float(x) for x in (d if isinstance(d, list) else [d]))
+
     def particle_properties(self):
-        """(diameter, density) of coupling.yaml's particles section."""
-        d, rho = self.coupling_value("particles.diameter"), self.coupling_value("particles.density")
-        if d is None or rho is None:
-            raise CaseError(f"{self.file('coupling.yaml')}: no particles.diameter and particles.density")
-        return float(d), float(rho)
+        """(diameter, density) of a monodisperse case's coupling.yaml particles section."""
+        diameters, rho = self.particle_diameters(), self.coupling_value("particles.density")
+        if rho is None:
+            raise CaseError(f"{self.file('coupling.yaml')}: no particles.density")
+        if len(diameters) != 1:
+            raise CaseError(f"{self.file('coupling.yaml')}: particles.diameter lists {len(diameters)} sizes;"
+                            " this needs a monodisperse case")
+        return diameters[0], float(rho)
 
     # DEM -----------------------------------------------------------------------------------
     def dem_script(self):

@@ -96,6 +96,7 @@ struct Case {
   VoidFractionMethod void_fraction;
   TransferMethod transfer;
   GasAtParticle gas_velocity = GasAtParticle::Cell;
+  drag::Polydispersity polydispersity = drag::Polydispersity::OwnDiameter;
 };
 
 class DistributedCouplingTest : public ::testing::TestWithParam<Case> {};
@@ -130,6 +131,7 @@ TEST_P(DistributedCouplingTest, EqualsSerialCore) {
   TransferOptions to;
   to.method = GetParam().transfer;
   to.gas_velocity = GetParam().gas_velocity;
+  to.polydispersity = GetParam().polydispersity;
   to.law = drag::Law::ErgunWenYu;
   const Reference ref = serial(b, vf, to);
 
@@ -203,7 +205,9 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{VoidFractionMethod::Centroid, TransferMethod::PerParticleConservative},
                       Case{VoidFractionMethod::Centroid, TransferMethod::PerParticle, GasAtParticle::Interpolated},
                       Case{VoidFractionMethod::PorousCube, TransferMethod::PerParticleConservative,
-                           GasAtParticle::Interpolated}));
+                           GasAtParticle::Interpolated},
+                      Case{VoidFractionMethod::Divided, TransferMethod::PerParticleConservative, GasAtParticle::Cell,
+                           drag::Polydispersity::Beetstra2007}));
 
 // Under the 2-D rule the fluid force has no z component even where the gas data have one
 // (round-off of a 2-D gas solution); in 3-D the z component is kept.

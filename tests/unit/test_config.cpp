@@ -52,7 +52,7 @@ std::string replaced(std::string text, const std::string &from, const std::strin
 TEST(Config, ValidFileGivesTypedValues) {
   const CouplingConfig c = parse_coupling_config("coupling.yaml", kValid);
   EXPECT_DOUBLE_EQ(c.gas.viscosity, 1.8e-5);
-  EXPECT_DOUBLE_EQ(c.particle_diameter, 0.0025);
+  EXPECT_EQ(c.particle_diameters, std::vector<double>{0.0025});
   EXPECT_EQ(c.dem_script, "in.bed");
   EXPECT_EQ(c.coupling_interval, 50);
   EXPECT_EQ(c.transfer.method, TransferMethod::PerParticle);
@@ -157,6 +157,25 @@ TEST(Config, GasVelocityAtParticle) {
                                       "  drag_law: beetstra\n  gas_velocity_at_particle: interpolated"));
   ASSERT_EQ(p.size(), 1u);
   EXPECT_TRUE(contains(p, "coupling.gas_velocity_at_particle: 'interpolated' applies to the per-particle transfers")) << p[0];
+}
+
+// A mixture lists its sizes (sorted); a bad entry is named; Beetstra's polydisperse drag needs a
+// per-particle transfer.
+TEST(Config, MixtureSizesAndPolydisperseDrag) {
+  const std::string mixture = replaced(kValid, "  diameter: 0.0025", "  diameter: [0.0025, 0.0015]");
+  const CouplingConfig c = parse_coupling_config(
+      "coupling.yaml", replaced(mixture, "  drag_law: beetstra", "  drag_law: beetstra\n  polydisperse_drag: beetstra_2007"));
+  EXPECT_EQ(c.particle_diameters, (std::vector<double>{0.0015, 0.0025}));
+  EXPECT_EQ(c.transfer.polydispersity, drag::Polydispersity::Beetstra2007);
+  EXPECT_EQ(parse_coupling_config("coupling.yaml", kValid).transfer.polydispersity, drag::Polydispersity::OwnDiameter);
+  auto p = problems_of(replaced(kValid, "  diameter: 0.0025", "  diameter: [0.0025, big]"));
+  ASSERT_EQ(p.size(), 1u);
+  EXPECT_TRUE(contains(p, "particles.diameter: must be a number or a list of numbers, got 'big'")) << p[0];
+  p = problems_of(replaced(replaced(kValid, "transfer: per_particle", "transfer: averaged"), "  drag_law: beetstra",
+                           "  drag_law: beetstra\n  polydisperse_drag: beetstra_2007"));
+  ASSERT_EQ(p.size(), 1u);
+  EXPECT_TRUE(contains(p, "coupling.polydisperse_drag: 'beetstra_2007' gives each particle its own drag")) << p[0];
+  EXPECT_TRUE(contains(p, "use transfer: per_particle_conservative")) << p[0];
 }
 
 TEST(Config, Outlets) {

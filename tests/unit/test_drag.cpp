@@ -167,6 +167,19 @@ TEST(Drag, NamesRoundTripAndUnknownNameListsValidOnes) {
   }
 }
 
+// Beetstra et al. (2007) bracket eps y + eps_s y^2 + 0.064 eps y^3 over its y = 1 value, per y^2.
+TEST(Drag, PolydisperseFactorByHand) {
+  for (double eps : {0.4, 0.6, 0.9}) EXPECT_NEAR(polydisperse_factor(eps, 1.0), 1.0, 1e-15) << eps;
+  // eps = 0.6, y = 1.5: (0.9 + 0.9 + 0.1296) / (1.0384 * 2.25)
+  EXPECT_NEAR(polydisperse_factor(0.6, 1.5), 1.9296 / (1.0384 * 2.25), 1e-15);
+  // eps = 0.6, y = 0.5: (0.3 + 0.1 + 0.0048) / (1.0384 * 0.25); a small particle gets more drag
+  // per volume than at <d> (the bracket falls slower than y^2).
+  EXPECT_NEAR(polydisperse_factor(0.6, 0.5), 0.4048 / (1.0384 * 0.25), 1e-15);
+  EXPECT_GT(polydisperse_factor(0.6, 0.5), 1.0);
+  EXPECT_EQ(polydispersity_from_name("beetstra_2007"), Polydispersity::Beetstra2007);
+  EXPECT_THROW(polydispersity_from_name("beetstra"), std::invalid_argument);
+}
+
 TEST(Drag, InvalidStateIsRejected) {
   EXPECT_THROW(beta(Law::Beetstra, {0.0, kD, 1.0}, kAir), std::invalid_argument);
   EXPECT_THROW(beta(Law::Beetstra, {1.2, kD, 1.0}, kAir), std::invalid_argument);

@@ -67,13 +67,26 @@ Mapped map(const Bed &b, VoidFractionMethod method) {
   return m;
 }
 
-TransferResult run(const Bed &b, const Mapped &m, TransferMethod method, const double *grad_p = nullptr) {
+// Centroid mapping of a 3-D bed.
+Mapped map3d(const Bed &b) {
+  Mapped m;
+  m.weights = compute_weights(b.grid, b.view(), VoidFractionOptions{});
+  m.fraction = map_void_fraction(m.weights, b.view(), b.cell_volume, 0.0);
+  m.gas_velocity_at_particles = average_to_particles(m.weights, b.cell_velocity.data(), 3);
+  m.gas_fraction_at_particles = average_to_particles(m.weights, m.fraction.void_fraction.data(), 1);
+  return m;
+}
+
+TransferResult run(const Bed &b, const Mapped &m, TransferMethod method, const double *grad_p = nullptr,
+                   drag::Polydispersity polydispersity = drag::Polydispersity::OwnDiameter,
+                   drag::Law law = drag::Law::Beetstra) {
   const CellGas cells{static_cast<std::size_t>(b.grid.cell_count()), b.cell_velocity.data(),
                       m.fraction.void_fraction.data(), b.cell_volume.data()};
   const GasAtParticles at{m.gas_velocity_at_particles.data(), m.gas_fraction_at_particles.data(), grad_p, nullptr};
   TransferOptions o;
   o.method = method;
-  o.law = drag::Law::Beetstra;
+  o.polydispersity = polydispersity;
+  o.law = law;
   o.gas = kAir;
   return transfer(m.weights, b.view(), cells, at, o);
 }
@@ -191,6 +204,68 @@ TEST(Transfer, LoneParticleDragFollowsEquation29) {
   const double expected = sphere_volume(0.003) * 0.75 * cd * eps * 1.2 * 0.5 / 0.003 * std::pow(eps, -2.7) * 0.5;
   EXPECT_NEAR(r.particle_drag[1], expected, 1e-12 * expected);
   EXPECT_EQ(r.particle_drag[0], 0.0);
+}
+
+// Beetstra et al.'s (2007) polydisperse drag reduces to the monodisperse law for equal sizes.
+TEST(Transfer, PolydisperseDragReducesToMonodisperseForEqualSizes) {
+  const Bed b = make_bed(false, 5, false);
+  for (auto vf : {VoidFractionMethod::Centroid, VoidFractionMethod::PorousCube}) {
+    const Mapped m = map(b, vf);
+    for (auto method : {TransferMethod::PerParticle, TransferMethod::PerParticleConservative}) {
+      const TransferResult own = run(b, m, method);
+      const TransferResult poly = run(b, m, method, nullptr, drag::Polydispersity::Beetstra2007);
+      for (std::size_t k = 0; k < own.particle_drag.size(); ++k)
+        EXPECT_NEAR(poly.particle_drag[k], own.particle_drag[k], 1e-12 * std::abs(own.particle_drag[k]) + 1e-30);
+    }
+  }
+}
+
+// A binary cell by hand: one 1.5 mm and one 2.5 mm particle at rest in a 3.5 mm cube, gas at
+// 1.2 m/s upward, Ergun (dense branch, seed 000 eq. 30) at the Sauter mean <d>, times
+// (eps y + eps_s y^2 + 0.064 eps y^3) / ((1 + 0.064 eps) y^2), y = d/<d> (Beetstra et al. 2007).
+TEST(Transfer, PolydisperseDragOfABinaryCellByHand) {
+  Bed b;
+  b.grid.origin = {0, 0, 0};
+  b.grid.spacing = {0.0035, 0.0035, 0.0035};
+  b.grid.count = {1, 1, 1};
+  b.position = {0.001, 0.001, 0.001, 0.0022, 0.0022, 0.0022};
+  b.velocity = {0, 0, 0, 0, 0, 0};
+  b.diameter = {0.0015, 0.0025};
+  b.density = {2500.0, 2500.0};
+  b.cell_velocity = {0.0, 1.2, 0.0};
+  b.cell_volume = {0.0035 * 0.0035 * 0.0035};
+  const Mapped m = map3d(b);
+  const double pi = std::acos(-1.0);
+  const double v1 = pi / 6 * 3.375e-9, v2 = pi / 6 * 15.625e-9;
+  const double eps = 1.0 - (v1 + v2) / 4.2875e-8, es = 1.0 - eps;
+  ASSERT_LT(eps, 0.8);  // Ergun's branch
+  const double sauter = (3.375e-9 + 15.625e-9) / (2.25e-6 + 6.25e-6);
+  const double ergun = 150.0 * es * 1.8e-5 / (eps * sauter * sauter) + 1.75 * 1.2 * 1.2 / sauter;  // beta/eps_s
+  const double y1 = 0.0015 / sauter, y2 = 0.0025 / sauter;
+  const double f1 = (eps * y1 + es * y1 * y1 + 0.064 * eps * y1 * y1 * y1) / ((1 + 0.064 * eps) * y1 * y1);
+  const double f2 = (eps * y2 + es * y2 * y2 + 0.064 * eps * y2 * y2 * y2) / ((1 + 0.064 * eps) * y2 * y2);
+  for (auto method : {TransferMethod::PerParticle, TransferMethod::PerParticleConservative}) {
+    const TransferResult r = run(b, m, method, nullptr, drag::Polydispersity::Beetstra2007, drag::Law::ErgunWenYu);
+    EXPECT_NEAR(r.particle_drag[1], v1 * ergun * f1 * 1.2, 1e-12 * v1 * ergun * f1 * 1.2);
+    EXPECT_NEAR(r.particle_drag[4], v2 * ergun * f2 * 1.2, 1e-12 * v2 * ergun * f2 * 1.2);
+    EXPECT_EQ(r.particle_drag[0], 0.0);
+  }
+  // The conservative gas sink is minus the sum of these two drags.
+  const TransferResult r = run(b, m, TransferMethod::PerParticleConservative, nullptr,
+                               drag::Polydispersity::Beetstra2007, drag::Law::ErgunWenYu);
+  const double sink = b.cell_volume[0] * r.cell_exchange_coefficient[0] * (1.2 - r.cell_solid_velocity[1]);
+  EXPECT_NEAR(sink, (v1 * f1 + v2 * f2) * ergun * 1.2, 1e-12 * sink);
+}
+
+// Newton's third law for a mixture under polydisperse drag with every mapping method.
+TEST(Transfer, PolydisperseConservativeTransferBalancesMomentum) {
+  const Bed b = make_bed(false, 6);
+  for (auto vf : {VoidFractionMethod::Centroid, VoidFractionMethod::Divided, VoidFractionMethod::PorousCube}) {
+    const TransferResult r = run(b, map(b, vf), TransferMethod::PerParticleConservative, nullptr,
+                                 drag::Polydispersity::Beetstra2007);
+    EXPECT_GT(r.drag_magnitude_sum, 0.0);
+    EXPECT_LT(relative_imbalance(r), 1e-12);
+  }
 }
 
 TEST(Transfer, MethodNames) {

@@ -48,6 +48,8 @@ class ConfigSection {
   long integer(const std::string &key, long fallback, long min, long max, bool required = false);
   bool boolean(const std::string &key, bool fallback);
   std::string text(const std::string &key, const std::string &fallback, bool required = false);
+  // A list of numbers in [min, max] (a YAML sequence, or one number); empty when absent.
+  std::vector<double> number_list(const std::string &key, double min, double max, bool required = false);
   // A list of texts (a YAML sequence, or one text); empty when absent.
   std::vector<std::string> text_list(const std::string &key);
   // Text that must be one of `choices`.
@@ -97,7 +99,9 @@ OutputOptions read_output(ConfigSection &section);
 struct CouplingConfig {
   std::string file;
   drag::Gas gas{1.2, 1.8e-5};
-  double particle_diameter = 0.0;  // d_p (m): 2-D cell depth, scene check
+  // d_p (m) of each particle size in the bed, ascending (one for a monodisperse bed): every DEM
+  // particle must have one of them; the 2-D rule's cell depth; the scene check uses the smallest.
+  std::vector<double> particle_diameters;
   double particle_density = 0.0;   // rho_p (kg/m^3)
   std::string dem_script;         // LIGGGHTS input, relative to the case directory
   long coupling_interval = 1;     // DEM steps per gas step

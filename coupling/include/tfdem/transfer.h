@@ -64,6 +64,8 @@ struct TransferOptions {
   TransferMethod method = TransferMethod::Averaged;
   GasAtParticle gas_velocity = GasAtParticle::Cell;
   drag::Law law = drag::Law::ErgunWenYu;
+  // Size dependence in a mixture; Beetstra2007 needs a per-particle method.
+  drag::Polydispersity polydispersity = drag::Polydispersity::OwnDiameter;
   drag::Gas gas{1.2, 1.8e-5};
 };
 
@@ -115,7 +117,12 @@ struct CellSolidsState {
   const double *solid_volume = nullptr;    // sum_i w_ic V_i over all particles
   const double *exchange_coefficient = nullptr;     // K_c of averaged_cell_drag (averaged method)
   const double *solid_velocity = nullptr;  // v_sm,c of averaged_cell_drag (averaged method)
+  const double *sauter_diameter = nullptr;  // <d>_c of sauter_diameters (polydisperse drag)
 };
+
+// Sauter mean diameter <d>_c = sum w d^3 / sum w d^2 per cell from completed solid sums
+// (0 in cells without particles).
+void sauter_diameters(const std::vector<double> &sums, std::size_t cell_count, double *sauter_diameter);
 
 // Stage 3: eps_g f_d (out.particle_drag) and the eq. 28 force (out.particle_force) of each
 // particle, sum_i |eps_g f_d,i| and sum_i eps_g f_d,i (out.momentum_imbalance, the particle

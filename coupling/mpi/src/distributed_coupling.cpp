@@ -9,8 +9,8 @@ namespace tfdem {
 namespace {
 
 // Per owned cell, what a particle rank fetches: u_g (3), eps_g, K_c, U_s,c (3), solid volume,
-// V_c, grad p (3).
-constexpr int kStateComponents = 13;
+// V_c, grad p (3), Sauter diameter.
+constexpr int kStateComponents = 14;
 
 // Throw the same std::out_of_range on every rank when `message` is set on any of them (the
 // lowest such rank's message), so no rank is left waiting in a collective call.
@@ -127,12 +127,15 @@ void DistributedCoupling::pack_owned_state(const double *gas_velocity, const dou
     s[4] = exchange_coefficient_[c];
     s[8] = gas_.solid_volume[c];
     s[9] = owned_volume_[c];
+    s[13] = sauter_diameter_[c];
   }
 }
 
 void DistributedCoupling::unpack_halo_state() {
   const std::size_t halo = halo_cells_.size();
-  for (auto *field : {&halo_.void_fraction, &halo_.exchange_coefficient, &halo_.solid_volume, &halo_.volume}) field->resize(halo);
+  for (auto *field : {&halo_.void_fraction, &halo_.exchange_coefficient, &halo_.solid_volume, &halo_.volume,
+                      &halo_.sauter_diameter})
+    field->resize(halo);
   for (auto *field : {&halo_.velocity, &halo_.solid_velocity, &halo_.gradient}) field->resize(3 * halo);
   for (std::size_t c = 0; c < halo; ++c) {
     const double *s = &halo_state_[kStateComponents * c];
@@ -145,6 +148,7 @@ void DistributedCoupling::unpack_halo_state() {
     halo_.exchange_coefficient[c] = s[4];
     halo_.solid_volume[c] = s[8];
     halo_.volume[c] = s[9];
+    halo_.sauter_diameter[c] = s[13];
   }
 }
 
@@ -167,12 +171,15 @@ void DistributedCoupling::forces(const ParticleView &particles, const double *ga
   } else {
     averaged_cell_drag(owned_sums_, owned_gas, transfer_, exchange_coefficient_.data(), solid_velocity_.data());
   }
+  sauter_diameter_.resize(owned);
+  sauter_diameters(owned_sums_, owned, sauter_diameter_.data());
   pack_owned_state(gas_velocity, pressure_gradient);
   exchange_.fetch_from_owners(owned_state_, kStateComponents, halo_state_);
 
   unpack_halo_state();
   const CellSolidsState state{{halo, halo_.velocity.data(), halo_.void_fraction.data(), halo_.volume.data()},
-                              halo_.solid_volume.data(), halo_.exchange_coefficient.data(), halo_.solid_velocity.data()};
+                              halo_.solid_volume.data(), halo_.exchange_coefficient.data(), halo_.solid_velocity.data(),
+                              halo_.sauter_diameter.data()};
   const std::vector<double> velocity_at = interpolates_gas_velocity()
                                                ? interpolated_velocity(particles)
                                                : average_to_particles(weights_, halo_.velocity.data(), 3);

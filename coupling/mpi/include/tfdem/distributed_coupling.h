@@ -82,7 +82,8 @@ class DistributedCoupling {
 
   // Completed cell data of the halo cells, one field per array (storage reused every step).
   struct HaloCells {
-    std::vector<double> velocity, void_fraction, exchange_coefficient, solid_velocity, solid_volume, volume, gradient;
+    std::vector<double> velocity, void_fraction, exchange_coefficient, solid_velocity, solid_volume, volume, gradient,
+        sauter_diameter;
   };
 
   MPI_Comm comm_;
@@ -98,7 +99,7 @@ class DistributedCoupling {
   std::vector<double> grid_velocity_;  // halo gas velocities on the global grid (interpolation)
   std::vector<double> halo_sums_, owned_sums_, halo_state_, owned_state_;
   VoidFraction gas_;
-  std::vector<double> exchange_coefficient_, solid_velocity_;
+  std::vector<double> exchange_coefficient_, solid_velocity_, sauter_diameter_;
   HaloCells halo_;
   TransferResult result_;
   CouplingTotals totals_;
