@@ -266,6 +266,19 @@ class Case:
             raise CaseError(f"{path}: patch '{patch}' has no 'value uniform ...;'")
         _write(path, text[:start.end()] + body + text[end:])
 
+    def set_patch_condition(self, field, patch, body, time="0"):
+        """Replace a patch's whole entry in a field file with `body` (e.g. 'type noSlip;')."""
+        path = self.file(time, field)
+        text = _read(path)
+        start = re.search(rf"(?m)^\s*{re.escape(patch)}\s*\{{", text)
+        if not start:
+            raise CaseError(f"{path}: no patch '{patch}'")
+        depth, end = 1, start.end()
+        while depth and end < len(text):
+            depth += {"{": 1, "}": -1}.get(text[end], 0)
+            end += 1
+        _write(path, text[:start.end()] + f" {body} " + text[end - 1:])
+
     def porosity(self, name=None):
         """A Darcy-Forchheimer porous zone of the case's fvOptions (constant/ or system/):
         dict with 'zone' (its cellZone), 'd' (1/m^2) and 'f' (1/m) as (x, y, z); the first

@@ -1,5 +1,6 @@
-"""A fixed bed with gas through it (tutorials/packed_bed_ergun): its Ergun reference read from
-the case's own files, a run at a chosen superficial velocity, and what the run measured.
+"""A fixed bed with gas through it (tutorials/packed_bed_ergun, tutorials/pseudo2d_packed_bed):
+its Ergun reference read from the case's own files, a run at a chosen superficial velocity, and
+what the run measured.
 
 The case: spheres put on the DEM script's simple-cubic lattice in a block region (`lattice sc`,
 `region bed block ...`, `create_atoms 1 region bed`) without time integration, in a column
@@ -8,11 +9,13 @@ two pressure probes (function `pressure` of system/controlDict) below and above 
 a `fix force_out ... print` file of the particles' summed fluid force, y.
 """
 import math
+import os
+import statistics
 
 import tfdem.run
 from tfdem import outputs
-from tfdem.case import Case
-from tfdem.physics import ergun_gradient, sphere_volume
+from tfdem.case import Case, CaseError
+from tfdem.physics import ergun_gradient, slab_solid_fraction, sphere_volume
 
 VELOCITIES = (0.3, 0.6, 1.0)  # m/s, superficial: tutorials/packed_bed_ergun's three runs
 
@@ -36,6 +39,10 @@ class FixedBed:
         below, above = self.case.probe_locations(probes)[:2]
         self.probe_gap = above[1] - below[1]
         self.probes = probes
+
+    def extra_files(self):
+        """Files a run's copy of the case needs besides its dictionaries and DEM scripts."""
+        return ()
 
     def ergun_gradient(self, u):
         """Ergun's pressure drop per bed length (Pa/m) at superficial velocity u."""
@@ -65,8 +72,80 @@ class FixedBed:
     def run(self, dest, u, runner=tfdem.run.run):
         """Copy the case to dest with inlet velocity (0 u 0), run blockMesh and tfdemFoam there
         via runner(args, cwd, log_name); return the measured pressure drop."""
-        copy = self.case.copy_to(dest)
+        copy = self.case.copy_to(dest, extra=self.extra_files())
         copy.set_patch_value("U", "inlet", (0, u, 0))
         runner(["blockMesh"], dest, "log.blockMesh")
         runner(["tfdemFoam"], dest, "log.tfdemFoam")
         return self.measured_pressure_drop(dest)
+
+
+class PouredBed(FixedBed):
+    """A poured bed (the DEM script's read_data file, particles not integrated) in a column of
+    any depth: Ergun at the solid fraction measured between two rows of pressure probes.
+
+    The slab between the rows (heights of the probes function) holds the exact volume of the
+    spheres inside it (spherical caps of those cut by its planes); eps = 1 - that / slab volume.
+    The measured pressure drop is the mean over the lower row minus the mean over the upper.
+    """
+
+    def __init__(self, case, probes="pressure"):
+        self.case = case if isinstance(case, Case) else Case(case)
+        self.d, _ = self.case.particle_properties()
+        self.rho_g, self.mu = self.case.gas()
+        self.g = self.case.gravity_magnitude()
+        self.probes = probes
+        heights = sorted({round(p[1], 9) for p in self.case.probe_locations(probes)})
+        if len(heights) != 2:
+            raise CaseError(f"{self.case.file('system', 'controlDict')}: probes '{probes}' must lie in two"
+                            f" rows (heights), found {len(heights)}")
+        self.below, self.above = heights
+        lo, hi = self.case.mesh_bounds()
+        self.width, self.depth = hi[0] - lo[0], hi[2] - lo[2]
+        self.height = self.probe_gap = self.above - self.below
+        self.eps = 1.0 - slab_solid_fraction(self.case.particles(), self.below, self.above, self.width * self.depth)
+
+    def measured_pressure_drop(self, case_path):
+        """Last probe row of a finished run: mean p of the lower row minus that of the upper (Pa)."""
+        locations = self.case.probe_locations(self.probes)
+        _, p = outputs.probes(case_path, self.probes, "p")[-1]
+        lower = [v for v, x in zip(p, locations) if abs(x[1] - self.below) < 1e-9]
+        upper = [v for v, x in zip(p, locations) if abs(x[1] - self.above) < 1e-9]
+        return statistics.fmean(lower) - statistics.fmean(upper)
+
+    def extra_files(self):
+        return (os.path.basename(self.case.dem().read_data()),)
+
+    def expected_particle_force(self, u):
+        raise CaseError("a poured bed's total particle force is not Ergun's: its solid fraction varies with"
+                        " height; compare the pressure drop between the probe rows")
+
+
+def deep_variant(case, dest, cells_in_depth, front_and_back="type noSlip;"):
+    """A copy of a one-cell-deep column case at dest with `cells_in_depth` cells across its depth
+    and the gas condition `front_and_back` on the patch frontAndBack (the 3-D variant)."""
+    source = case if isinstance(case, Case) else Case(case)
+    copy = source.copy_to(dest, extra=(os.path.basename(source.dem().read_data()),))
+    copy.scale_cells(2, cells_in_depth)
+    copy.set_patch_condition("U", "frontAndBack", front_and_back)
+    return copy
+
+
+DEEP_CELLS = 3  # cells across the depth in tutorials/pseudo2d_packed_bed's 3-D variant
+
+
+def poured_bed_runs(case, runs_dir, runner=tfdem.run.run, velocities=VELOCITIES):
+    """The runs of tutorials/pseudo2d_packed_bed (or a case built like it) under runs_dir: the
+    case as it is (one cell deep, front and back slip) and its 3-D variant (DEEP_CELLS cells in
+    depth, noSlip front and back) at each velocity, and the 3-D variant with slip walls at the
+    middle one. Returns {(variant, u): (measured, expected)} pressure drops (Pa)."""
+    case = case if isinstance(case, Case) else Case(case)
+    variants = {"one_cell": case,
+                "deep_noslip": deep_variant(case, os.path.join(runs_dir, "deep_noslip"), DEEP_CELLS),
+                "deep_slip": deep_variant(case, os.path.join(runs_dir, "deep_slip"), DEEP_CELLS, "type slip;")}
+    results = {}
+    for name, variant in variants.items():
+        bed = PouredBed(variant)
+        for u in velocities if name != "deep_slip" else velocities[len(velocities) // 2:][:1]:
+            dp = bed.run(os.path.join(runs_dir, f"{name}_U{u}"), u, runner)
+            results[(name, u)] = (dp, bed.expected_pressure_drop(u))
+    return results

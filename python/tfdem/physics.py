@@ -61,6 +61,22 @@ def ergun_minimum_fluidization(eps, d, rho_p, rho_g, mu, g):
     return re * mu / (rho_g * d)
 
 
+def sphere_volume_below(d, t):
+    """Volume of a sphere of diameter d below a plane at signed distance t from its centre
+    (a cap of height h = r + t: pi h^2 (3r - h)/3)."""
+    r = 0.5 * d
+    h = min(max(r + t, 0.0), 2 * r)
+    return math.pi * h * h * (3 * r - h) / 3
+
+
+def slab_solid_fraction(particles, y0, y1, area):
+    """Solid fraction of the slab y0 < y < y1 of cross-section `area`: the exact volume of the
+    spheres (dict of lists diameter, y) inside it, over the slab's volume."""
+    solid = math.fsum(sphere_volume_below(d, y1 - y) - sphere_volume_below(d, y0 - y)
+                      for d, y in zip(particles["diameter"], particles["y"]))
+    return solid / (area * (y1 - y0))
+
+
 def sphere_volume(d):
     return math.pi * d ** 3 / 6
 
