@@ -116,7 +116,11 @@ Foam::TfdemCoupling::TfdemCoupling
     checkpoint_.verify(*dem_, accounting_->totals());
     statistics_.reset
     (
-        new TfdemStatistics(mesh, config_.output, grid_.grid, grid_.gridCellOfCell, g.value())
+        new TfdemStatistics
+        (
+            mesh, config_.output, config_.particle_diameters, grid_.grid,
+            grid_.gridCellOfCell, g.value()
+        )
     );
 
     const tfdem::ParticleView view = particles();

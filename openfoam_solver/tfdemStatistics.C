@@ -23,6 +23,7 @@ Foam::TfdemStatistics::TfdemStatistics
 (
     const fvMesh& mesh,
     const tfdem::OutputOptions& options,
+    const std::vector<double>& particleDiameters,
     const tfdem::CartesianGrid& grid,
     const std::vector<int>& gridCellOfCell,
     const vector& g
@@ -32,7 +33,13 @@ Foam::TfdemStatistics::TfdemStatistics
     options_(options),
     grid_(grid),
     gridCellOfCell_(gridCellOfCell),
-    gravity_(mag(g))
+    gravity_(mag(g)),
+    sizeThreshold_
+    (
+        particleDiameters.size() == 2
+      ? 0.5*(particleDiameters[0] + particleDiameters[1])
+      : 0
+    )
 {
     for (direction a = 0; a < 3; ++a)
     {
@@ -86,7 +93,8 @@ Foam::TfdemStatistics::TfdemStatistics
         series_.reset(new OFstream(dir/"particles.dat"));
         *series_
             << "# t (s)  particles  mass (kg)  mean height (m)  bulk coordination number"
-            << "  multicontact ratio" << nl;
+            << "  multicontact ratio"
+            << (sizeThreshold_ > 0 ? "  segregation degree" : "") << nl;
     }
     Info<< "TFDEM statistics: every " << sampleSteps_ << " gas steps ("
         << options.statistics_interval << " s) to postProcessing/tfdemParticles and the"
@@ -122,13 +130,34 @@ void Foam::TfdemStatistics::writeSeriesRow
     }
     MPI_Allreduce(MPI_IN_PLACE, sums, 6, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
     counts = {sums[0], sums[1], sums[2], sums[3]};
+    tfdem::analysis::SegregationSums segregation;
+    if (sizeThreshold_ > 0)
+    {
+        segregation = tfdem::analysis::segregation_sums
+        (
+            p, sizeThreshold_, upAxis_, grid_.origin[upAxis_]
+        );
+        MPI_Allreduce
+        (
+            MPI_IN_PLACE, segregation.data(), segregation.kComponents, MPI_DOUBLE,
+            MPI_SUM, MPI_COMM_WORLD
+        );
+    }
     if (series_)
     {
         *series_
             << setprecision(10) << t << ' ' << label(sums[0]) << ' ' << setprecision(17)
             << sums[4] << ' ' << setprecision(10) << (sums[0] > 0 ? sums[5]/sums[0] : 0) << ' '
             << counts.bulk_coordination()
-            << ' ' << counts.multicontact() << endl;
+            << ' ' << counts.multicontact();
+        if (sizeThreshold_ > 0)
+        {
+            const bool bothSizes =
+                segregation.count_small > 0 && segregation.count_large > 0;
+            *series_
+                << ' ' << (bothSizes ? tfdem::analysis::segregation_degree(segregation) : 0);
+        }
+        *series_ << endl;
     }
 }
 

@@ -125,26 +125,30 @@ ForceMaps force_maps(const std::vector<double> &contact_sums, const std::vector<
   return m;
 }
 
-double segregation_degree(const ParticleView &p, const std::vector<bool> &is_large, int axis, double base) {
-  double h_small = 0.0, h_large = 0.0, v_small = 0.0, v_large = 0.0;
-  std::size_t n_small = 0, n_large = 0;
+SegregationSums segregation_sums(const ParticleView &p, double size_threshold, int axis, double base) {
+  SegregationSums s;
   for (std::size_t i = 0; i < p.count; ++i) {
     const double h = p.position[3 * i + axis] - base, v = sphere_volume(p.diameter[i]);
-    if (is_large.at(i)) {
-      h_large += h;
-      v_large += v;
-      ++n_large;
+    if (p.diameter[i] > size_threshold) {
+      s.height_large += h;
+      s.volume_large += v;
+      s.count_large += 1.0;
     } else {
-      h_small += h;
-      v_small += v;
-      ++n_small;
+      s.height_small += h;
+      s.volume_small += v;
+      s.count_small += 1.0;
     }
   }
-  if (n_small == 0 || n_large == 0) throw std::invalid_argument("segregation needs small and large particles");
-  const double s = (h_small / n_small) / (h_large / n_large);
-  const double x_large = v_large / (v_large + v_small);
-  const double s_max = (x_large + 1.0) / x_large;
-  return (s - 1.0) / (s_max - 1.0);
+  return s;
+}
+
+double segregation_degree(const SegregationSums &s) {
+  if (s.count_small <= 0.0 || s.count_large <= 0.0)
+    throw std::invalid_argument("segregation needs small and large particles");
+  const double ratio = (s.height_small / s.count_small) / (s.height_large / s.count_large);
+  const double x_large = s.volume_large / (s.volume_large + s.volume_small);
+  const double ratio_max = (x_large + 1.0) / x_large;
+  return (ratio - 1.0) / (ratio_max - 1.0);
 }
 
 std::vector<double> granular_temperature(const CellWeights &w, const ParticleView &p, std::size_t cell_count) {

@@ -78,12 +78,14 @@ def probe_locations(case_path, name="pressure", field="p"):
 
 def particle_statistics(case_path):
     """Columns of the coupler's particle statistics (postProcessing/tfdemParticles): dict of
-    lists t, particles, mass, mean_height, bulk_coordination, multicontact."""
+    lists t, particles, mass, mean_height, bulk_coordination, multicontact, and for a
+    bidisperse bed segregation (seed 001 eq. 49)."""
     rows = joined_series(case_path, "tfdemParticles", "particles.dat")
-    keys = ("particles", "mass", "mean_height", "bulk_coordination", "multicontact")
+    keys = ("particles", "mass", "mean_height", "bulk_coordination", "multicontact", "segregation")
     out = {"t": [r[0] for r in rows]}
     for k, key in enumerate(keys):
-        out[key] = [r[1][k] for r in rows]
+        if rows and len(rows[0][1]) > k:
+            out[key] = [r[1][k] for r in rows]
     return out
 
 

@@ -1,14 +1,16 @@
 """The tfdem package's readers and editors on hand-made files (no simulation): series joined
 over a resume, stale files of an earlier run refused, fix-print and dump files rewound when a
 resumed run appends, coupling.yaml edited in place with its comments, the batch-means error
-of a hand-made signal."""
+of a hand-made signal, the solid fraction of a slab cutting spheres, a packing.yaml read."""
 import math
 import os
 import sys
 import tempfile
 
-from tfdem.case import Case, set_yaml_value
+from tfdem.case import Case, CaseError, set_yaml_value
 from tfdem.outputs import OutputError, dump_frames, fix_print, joined_series
+from tfdem.packing import packing_settings
+from tfdem.physics import slab_solid_fraction
 from tfdem.stats import batch_means
 
 failures = []
@@ -75,6 +77,26 @@ def main():
     y = [float(int(ti) % 2) for ti in t]
     m, err, n = batch_means(t, y, 0.0, 10.0, 1.0)
     check("batch-means error by hand", abs(m - 0.5) < 1e-12 and abs(err - 0.5 / math.sqrt(9)) < 1e-12, f"{m} {err}")
+
+    # Slab 0 < y < 1 cm of area 1 cm^2 with three spheres of d = 4 mm: one inside (y = 5 mm),
+    # one cut in half by y = 0, one whose cap of height 1 mm pokes in from above (centre at
+    # y = 1.1 cm, r = 2 mm: cap pi h^2 (3r - h)/3 = pi (1 mm)^2 (5 mm)/3).
+    v = math.pi * 4e-3 ** 3 / 6
+    cap = math.pi * 1e-3 ** 2 * 5e-3 / 3
+    fraction = slab_solid_fraction({"diameter": [4e-3] * 3, "y": [5e-3, 0.0, 1.1e-2]}, 0.0, 1e-2, 1e-4)
+    check("slab solid fraction by hand", abs(fraction - (v + v / 2 + cap) / 1e-6) < 1e-12, f"{fraction}")
+
+    # packing.yaml: its settings, an unknown key named, a missing count refused
+    write(os.path.join(case_dir, "packing.yaml"), "count: 100\nmass_fraction_small: 0.25\n")
+    check("packing.yaml read", packing_settings(case) == {"count": 100, "mass_fraction_small": 0.25})
+    for text, expected in (("count: 100\nmas_fraction_small: 0.2\n", "unknown key 'mas_fraction_small'"),
+                           ("seed: 15485863\n", "no 'count'")):
+        write(os.path.join(case_dir, "packing.yaml"), text)
+        try:
+            packing_settings(case)
+            check(f"packing.yaml refused: {expected}", False)
+        except CaseError as e:
+            check(f"packing.yaml refused: {expected}", expected in str(e), str(e))
 
     print(f"{'FAILED: ' + ', '.join(failures) if failures else 'all passed'}")
     sys.exit(1 if failures else 0)

@@ -144,7 +144,6 @@ TEST(Analysis, SegregationDegreeLimits) {
   const double vl = n_large * sphere_volume(dl), vs = n_small * sphere_volume(ds);
   const double x_large = vl / (vl + vs);
   Cloud segregated, mixed;
-  std::vector<bool> large_s, large_m;
   for (int k = 0; k < n_large; ++k) {
     segregated.add(0.0, x_large * height * (k + 0.5) / n_large, 0.0, dl);
     mixed.add(0.0, height * (k + 0.5) / n_large, 0.0, dl);
@@ -153,11 +152,26 @@ TEST(Analysis, SegregationDegreeLimits) {
     segregated.add(0.0, height * (x_large + (1.0 - x_large) * (k + 0.5) / n_small), 0.0, ds);
     mixed.add(0.0, height * (k + 0.5) / n_small, 0.0, ds);
   }
-  large_s.assign(n_large, true);
-  large_s.resize(n_large + n_small, false);
-  large_m = large_s;
-  EXPECT_NEAR(segregation_degree(segregated.view(), large_s, 1, 0.0), 1.0, 1e-12);
-  EXPECT_NEAR(segregation_degree(mixed.view(), large_m, 1, 0.0), 0.0, 1e-12);
+  const double threshold = 0.5 * (ds + dl);
+  EXPECT_NEAR(segregation_degree(segregation_sums(segregated.view(), threshold, 1, 0.0)), 1.0, 1e-12);
+  EXPECT_NEAR(segregation_degree(segregation_sums(mixed.view(), threshold, 1, 0.0)), 0.0, 1e-12);
+  // Inverted (large on top, small below): S = <h_S>/<h_L> = (1 - x_L)/(2 - x_L) < 1, s < 0.
+  Cloud inverted;
+  for (int k = 0; k < n_small; ++k) inverted.add(0.0, (1.0 - x_large) * height * (k + 0.5) / n_small, 0.0, ds);
+  for (int k = 0; k < n_large; ++k)
+    inverted.add(0.0, height * ((1.0 - x_large) + x_large * (k + 0.5) / n_large), 0.0, dl);
+  const double ratio = (1.0 - x_large) / (2.0 - x_large), ratio_max = (x_large + 1.0) / x_large;
+  EXPECT_NEAR(segregation_degree(segregation_sums(inverted.view(), threshold, 1, 0.0)),
+              (ratio - 1.0) / (ratio_max - 1.0), 1e-12);
+  // Sums over two halves of the particles (as two ranks hold them) add up to the whole bed's.
+  Cloud halves[2];
+  for (std::size_t i = 0; i < segregated.diameter.size(); ++i)
+    halves[i % 2].add(0.0, segregated.position[3 * i + 1], 0.0, segregated.diameter[i]);
+  SegregationSums total = segregation_sums(halves[0].view(), threshold, 1, 0.0);
+  const SegregationSums other = segregation_sums(halves[1].view(), threshold, 1, 0.0);
+  for (int k = 0; k < SegregationSums::kComponents; ++k) total.data()[k] += other.data()[k];
+  EXPECT_NEAR(segregation_degree(total), 1.0, 1e-12);
+  EXPECT_THROW(segregation_degree(segregation_sums(Cloud().view(), threshold, 1, 0.0)), std::invalid_argument);
 }
 
 // Two equal particles moving at +u and -u in one cell: v_sm = 0, theta = u^2 / 3 (seed 000 eq. 6).

@@ -58,10 +58,22 @@ struct ForceMaps {
 };
 ForceMaps force_maps(const std::vector<double> &contact_sums, const std::vector<double> &drag_sums);
 
-// Degree of segregation s = (S - 1)/(S_max - 1), S = <h_small>/<h_large>,
-// S_max = (x_large + 1)/x_large with x_large the volume fraction of large particles
-// (seed 001 eq. 49): 0 mixed, 1 segregated. `is_large` flags each particle.
-double segregation_degree(const ParticleView &particles, const std::vector<bool> &is_large, int axis, double base);
+// Degree of segregation of a bidisperse bed (seed 001 eq. 49): s = (S - 1)/(S_max - 1),
+// S = <h_small>/<h_large>, S_max = (x_large + 1)/x_large with x_large the volume fraction of
+// large particles: 0 mixed, 1 segregated (small on top). Particles with d > size_threshold are
+// large; h is the height along `axis` above `base`. The sums are additive over ranks:
+// heights, volumes and counts of the small then the large particles.
+struct SegregationSums {
+  double height_small = 0.0, height_large = 0.0;
+  double volume_small = 0.0, volume_large = 0.0;
+  double count_small = 0.0, count_large = 0.0;
+  static constexpr int kComponents = 6;
+  double *data() { return &height_small; }
+  const double *data() const { return &height_small; }
+};
+SegregationSums segregation_sums(const ParticleView &particles, double size_threshold, int axis, double base);
+// s from completed sums; throws std::invalid_argument when one size is absent.
+double segregation_degree(const SegregationSums &sums);
 
 // Granular temperature per cell, theta = <|v - v_sm|^2> / 3 (seed 000 eq. 6), volume-
 // weighted with the mapping weights; 0 in empty cells.
