@@ -1,0 +1,60 @@
+"""Goldschmidt's bidisperse bed (tutorials/bidisperse_segregation), short: its own files with
+a tenth of the particles (packing.yaml count / 10, a bed ~1.5 cm deep instead of ~15 cm) poured
+mixed, then 0.1 s under the polydisperse drag on 2 ranks through the tutorial's driver.
+
+- The pour: every particle inserted; the small size's share of the mass as packing.yaml asks
+  (within the sampling error of drawing sizes at random by mass, 3 binomial sigmas).
+- The run ends, conserves the particles, and its particle statistics carry the degree of
+  segregation (seed 001 eq. 49) at 0.1 s: a poured mixture starts mixed, |s| < 0.15 (a
+  random pour of equal volumes of the two sizes gives |s| of order 0.02; a bed segregated by
+  the pour would be near 1).
+"""
+import math
+import os
+import sys
+
+from tfdem import TUTORIALS
+from tfdem.case import Case, set_yaml_value
+from tfdem.outputs import particle_statistics
+from tfdem.packing import packing_settings, pour_case
+from tfdem.physics import sphere_volume
+from tfdem_testlib import Checks, run, scratch
+
+TUTORIAL = os.path.join(TUTORIALS, "bidisperse_segregation")
+sys.path.insert(0, TUTORIAL)
+import segregation  # noqa: E402
+
+
+def main():
+    checks = Checks()
+    root = scratch("segregation")
+    case = Case(TUTORIAL).copy_to(root, extra=("packing.yaml", "segregation.py"))
+    settings = packing_settings(case)
+    count = settings["count"] // 10
+    set_yaml_value(case.file("packing.yaml"), "count", count)
+    print(pour_case(case, runner=lambda *a, **k: run(*a[:3])))
+    particles = case.particles()
+    small, large = case.particle_diameters()
+    mass = {d: sum(sphere_volume(x) for x in particles["diameter"] if abs(x - d) < 1e-9) for d in (small, large)}
+    checks.true("every particle poured", len(particles["id"]) == count, f"({len(particles['id'])} of {count})")
+    fraction = mass[small] / (mass[small] + mass[large])
+    expected = settings["mass_fraction_small"]
+    p_small = (expected / sphere_volume(small)) / (expected / sphere_volume(small) + (1 - expected) / sphere_volume(large))
+    sigma = expected * (1 - expected) / math.sqrt(count * p_small * (1 - p_small))  # of the binomial N_small
+    checks.within("small size's mass fraction", fraction, expected, 3 * sigma)
+
+    runs = [segregation.SegregationRun("polydisperse", 2, root=root)]
+    ok = segregation.run_batch(runs, 0.1, 1)
+    checks.true("run finished", ok)
+    stats = particle_statistics(runs[0].case.path)
+    checks.true("particles conserved", stats["particles"] and all(n == count for n in stats["particles"]),
+                f"({stats['particles']})")
+    checks.true("segregation degree written at 0.1 s", "segregation" in stats and abs(stats["t"][-1] - 0.1) < 1e-9,
+                f"({stats.get('t')})")
+    if "segregation" in stats:
+        checks.true("the poured mixture starts mixed", abs(stats["segregation"][-1]) < 0.15, f"(s = {stats['segregation'][-1]:.4f})")
+    checks.finish()
+
+
+if __name__ == "__main__":
+    main()
