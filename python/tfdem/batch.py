@@ -3,6 +3,7 @@ folder with a status file; a finished run is skipped, a stopped one resumes from
 complete time folder (the coupled solver's joint checkpoint, or the fields a plain OpenFOAM
 solver wrote). The seed 000 study and the speed-against-error sweeps are such batches.
 """
+import argparse
 import json
 import os
 import re
@@ -12,6 +13,7 @@ import subprocess
 import sys
 import time
 
+import tfdem.run
 from tfdem.case import Case
 from tfdem.run import environment
 
@@ -242,3 +244,57 @@ def _run_pending(pending, active, jobs, poll, report_every):
             print_progress(active, started)
             last_report = time.monotonic()
     return ok
+
+
+class VariantRun(CaseRun):
+    """A run of a tutorial case under runs/<name>/ with some coupling.yaml settings changed
+    (e.g. the drag law), from the tutorial's own initial bed (bed.data), on `ranks` ranks.
+    Subclasses may add steps after the mesh (prepare_mesh)."""
+
+    def __init__(self, name, settings, ranks, root):
+        super().__init__(name, os.path.join(root, "runs", name))
+        self.settings, self.ranks, self.root = settings, ranks, root
+
+    def command(self):
+        return tfdem.run.command(["tfdemFoam"], self.ranks)
+
+    def prepare(self, end_time):
+        if os.path.isdir(self.case.path):
+            shutil.rmtree(self.case.path)
+        self.case = Case(self.root).copy_to(self.case.path, extra=("bed.data",))
+        self.set_status(state="prepared", end_time=end_time)
+        interval = float(self.case.control("writeInterval"))
+        self.case.set_control(endTime=end_time, writeInterval=min(interval, end_time), startFrom="startTime")
+        for key, value in self.settings.items():
+            self.case.set_coupling(key, value)
+        tfdem.run.run(["blockMesh"], self.case.path, "log.blockMesh")
+        self.prepare_mesh()
+        if self.ranks > 1:
+            tfdem.run.decompose(self.case.path, (self.ranks, 1, 1))
+
+    def prepare_mesh(self):
+        """Steps between blockMesh and the decomposition (none here)."""
+
+
+def variants_command_line(doc, root, variants, make_run, report, default_end_time, argv=None):
+    """`run [--end-time T] [--jobs J] [--ranks R] [--variants ...]` and `report` of a tutorial
+    whose runs are variants of it (`variants`: their names): `run` pours the tutorial's bed
+    once (bed.data from its packing.yaml), runs the variants (make_run(name, ranks)) and then
+    reports; returns the exit code."""
+    from tfdem.packing import pour_case  # the pour needs the packing module only here
+    parser = argparse.ArgumentParser(description=doc, formatter_class=argparse.RawDescriptionHelpFormatter)
+    sub = parser.add_subparsers(dest="action", required=True)
+    run_parser = sub.add_parser("run")
+    run_parser.add_argument("--end-time", type=float, default=default_end_time)
+    run_parser.add_argument("--jobs", type=int, default=2)
+    run_parser.add_argument("--ranks", type=int, default=1)
+    run_parser.add_argument("--variants", nargs="+", choices=sorted(variants), default=list(variants))
+    sub.add_parser("report")
+    args = parser.parse_args(argv)
+    if args.action == "run":
+        if not os.path.exists(os.path.join(root, "bed.data")):
+            print("pouring the bed (tfdem.packing, packing.yaml)", flush=True)
+            print(pour_case(root), flush=True)
+        ok = run_batch([make_run(name, args.ranks) for name in args.variants], args.end_time, args.jobs)
+    report()
+    return 0 if args.action == "report" or ok else 1

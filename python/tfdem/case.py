@@ -247,37 +247,34 @@ class Case:
         value = found.group(1).strip()
         return vector(value) if value.startswith("(") else float(value)
 
-    def set_patch_value(self, field, patch, value, time="0"):
-        """Set the `value uniform ...` of a patch of a field file; value a float or a tuple."""
+    def _patch_span(self, field, patch, time):
+        """(path, text, start, end) of a field file: its patch entry's body is text[start:end],
+        between the braces."""
         path = self.file(time, field)
         text = _read(path)
-        start = re.search(rf"(?m)^\s*{re.escape(patch)}\s*\{{", text)
-        if not start:
+        found = re.search(rf"(?m)^\s*{re.escape(patch)}\s*\{{", text)
+        if not found:
             raise CaseError(f"{path}: no patch '{patch}'")
-        depth, end = 1, start.end()
+        depth, end = 1, found.end()
         while depth and end < len(text):
             depth += {"{": 1, "}": -1}.get(text[end], 0)
             end += 1
-        end -= 1  # the patch's closing brace
+        return path, text, found.end(), end - 1
+
+    def set_patch_value(self, field, patch, value, time="0"):
+        """Set the `value uniform ...` of a patch of a field file; value a float or a tuple."""
+        path, text, start, end = self._patch_span(field, patch, time)
         written = f"({' '.join(f'{v:g}' for v in value)})" if isinstance(value, (tuple, list)) else f"{value:g}"
         body, n = re.subn(r"(\bvalue\s+uniform\s+)[^;]+;", lambda m: f"{m.group(1)}{written};",
-                          text[start.end():end], count=1)
+                          text[start:end], count=1)
         if n == 0:
             raise CaseError(f"{path}: patch '{patch}' has no 'value uniform ...;'")
-        _write(path, text[:start.end()] + body + text[end:])
+        _write(path, text[:start] + body + text[end:])
 
     def set_patch_condition(self, field, patch, body, time="0"):
         """Replace a patch's whole entry in a field file with `body` (e.g. 'type noSlip;')."""
-        path = self.file(time, field)
-        text = _read(path)
-        start = re.search(rf"(?m)^\s*{re.escape(patch)}\s*\{{", text)
-        if not start:
-            raise CaseError(f"{path}: no patch '{patch}'")
-        depth, end = 1, start.end()
-        while depth and end < len(text):
-            depth += {"{": 1, "}": -1}.get(text[end], 0)
-            end += 1
-        _write(path, text[:start.end()] + f" {body} " + text[end - 1:])
+        path, text, start, end = self._patch_span(field, patch, time)
+        _write(path, text[:start] + f" {body} " + text[end:])
 
     def porosity(self, name=None):
         """A Darcy-Forchheimer porous zone of the case's fvOptions (constant/ or system/):

@@ -14,6 +14,7 @@ import os
 import sys
 
 from tfdem import TUTORIALS
+from tfdem.batch import run_batch
 from tfdem.case import Case, set_yaml_value
 from tfdem.outputs import particle_statistics
 from tfdem.packing import packing_settings, pour_case
@@ -43,8 +44,8 @@ def main():
     sigma = expected * (1 - expected) / math.sqrt(count * p_small * (1 - p_small))  # of the binomial N_small
     checks.within("small size's mass fraction", fraction, expected, 3 * sigma)
 
-    runs = [segregation.SegregationRun("polydisperse", 2, root=root)]
-    ok = segregation.run_batch(runs, 0.1, 1)
+    runs = [segregation.segregation_run("polydisperse", 2, root=root)]
+    ok = run_batch(runs, 0.1, 1)
     checks.true("run finished", ok)
     stats = particle_statistics(runs[0].case.path)
     checks.true("particles conserved", stats["particles"] and all(n == count for n in stats["particles"]),

@@ -1,12 +1,16 @@
 """The tfdem package's readers and editors on hand-made files (no simulation): series joined
 over a resume, stale files of an earlier run refused, fix-print and dump files rewound when a
 resumed run appends, coupling.yaml edited in place with its comments, the batch-means error
-of a hand-made signal, the solid fraction of a slab cutting spheres, a packing.yaml read."""
+of a hand-made signal, the solid fraction of a slab cutting spheres, a packing.yaml read, a
+bubble found in a hand-made gas-fraction map, the mixing fraction of a coloured layer."""
 import math
 import os
 import sys
 import tempfile
 
+import numpy
+
+from tfdem.bubble import coloured_above, find_bubble
 from tfdem.case import Case, CaseError, set_yaml_value
 from tfdem.outputs import OutputError, dump_frames, fix_print, joined_series
 from tfdem.packing import packing_settings
@@ -97,6 +101,26 @@ def main():
             check(f"packing.yaml refused: {expected}", False)
         except CaseError as e:
             check(f"packing.yaml refused: {expected}", expected in str(e), str(e))
+
+    # A 10 x 8 map (cells 1 cm x 2 cm): freeboard in the top two rows, a 3-wide x 2-high bubble
+    # (rows 3-4, columns 2-4) and a lone dilute cell (row 1, column 7), eps 0.9 in them, 0.45
+    # elsewhere. Bubble: 6 cells = 12 cm^2, D = sqrt(4 * 12e-4 / pi), aspect 4 cm / 3 cm,
+    # centroid x = 3.5 cm, y = 8 cm (rows 3-4 span 6-10 cm).
+    eps = numpy.full((10, 8), 0.45)
+    eps[8:, :] = 1.0
+    eps[3:5, 2:5] = 0.9
+    eps[1, 7] = 0.9
+    bubble = find_bubble(eps, 0.01, 0.02)
+    check("bubble by hand", bubble is not None and abs(bubble["area"] - 12e-4) < 1e-15
+          and abs(bubble["diameter"] - math.sqrt(4 * 12e-4 / math.pi)) < 1e-12
+          and abs(bubble["aspect"] - 4 / 3) < 1e-12 and abs(bubble["x"] - 0.035) < 1e-12
+          and abs(bubble["y"] - 0.08) < 1e-12, str(bubble))
+    eps[3:5, 2:5] = 0.45
+    eps[1, 7] = 0.45
+    check("no bubble once it has erupted", find_bubble(eps, 0.01, 0.02) is None)
+    # Coloured layer: ids 1-4 start below 0.1 m, two of them now above it: 1/2.
+    start = {1: 0.02, 2: 0.05, 3: 0.08, 4: 0.09, 5: 0.15}
+    check("coloured fraction above the interface", coloured_above(start, [1, 2, 3, 4, 5], [0.2, 0.05, 0.12, 0.01, 0.3], 0.1) == 0.5)
 
     print(f"{'FAILED: ' + ', '.join(failures) if failures else 'all passed'}")
     sys.exit(1 if failures else 0)

@@ -1,6 +1,6 @@
 """Goldschmidt's bidisperse segregation (seed 001 §5, eq. 49, Fig. 11) under two drag laws.
 
-    segregation.py run [--end-time 60] [--jobs 2] [--ranks 1] [--laws polydisperse standard]
+    segregation.py run [--end-time 60] [--jobs 2] [--ranks 1] [--variants polydisperse standard]
     segregation.py report
 
 `run` pours the mixed bed once (bed.data, tfdem.packing from packing.yaml) and runs each law
@@ -14,16 +14,11 @@ The laws (coupling.yaml gives the polydisperse one):
   mean with their polydisperse correction (coupling.polydisperse_drag: beetstra_2007);
 - standard: seed 001 eq. 3-4 (Ergun, Wen-Yu) at each particle's own diameter.
 """
-import argparse
 import os
-import shutil
 import sys
 
 from tfdem import outputs
-from tfdem.batch import CaseRun, clock, run_batch
-from tfdem.case import Case
-from tfdem.packing import pour_case
-from tfdem.run import command, decompose, run
+from tfdem.batch import VariantRun, clock, variants_command_line
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 LAWS = {
@@ -36,25 +31,9 @@ SEED_AT_60_S = {"polydisperse": 0.65, "experiment": 0.64}
 REPORT_TIMES = (1, 2, 5, 10, 20, 30, 60)
 
 
-class SegregationRun(CaseRun):
-    def __init__(self, law, ranks, root=HERE):
-        super().__init__(law, os.path.join(root, "runs", law))
-        self.law, self.ranks, self.root = law, ranks, root
-
-    def command(self):
-        return command(["tfdemFoam"], self.ranks)
-
-    def prepare(self, end_time):
-        if os.path.isdir(self.case.path):
-            shutil.rmtree(self.case.path)
-        self.case = Case(self.root).copy_to(self.case.path, extra=("bed.data",))
-        self.set_status(state="prepared", end_time=end_time)
-        self.case.set_control(endTime=end_time, writeInterval=min(0.5, end_time), startFrom="startTime")
-        for key, value in LAWS[self.law].items():
-            self.case.set_coupling(key, value)
-        run(["blockMesh"], self.case.path, "log.blockMesh")
-        if self.ranks > 1:
-            decompose(self.case.path, (self.ranks, 1, 1))
+def segregation_run(law, ranks, root=HERE):
+    """The run of `law` (a key of LAWS) under root/runs/<law>/."""
+    return VariantRun(law, LAWS[law], ranks, root)
 
 
 def segregation_series(law, root=HERE):
@@ -86,7 +65,7 @@ def report(root=HERE):
         if not t:
             print(f"{law}: no samples yet")
             continue
-        run_ = SegregationRun(law, 1, root)
+        run_ = segregation_run(law, 1, root)
         reached = ", ".join(f"s({x:g} s) = {value_at(t, s, x):.3f}" for x in REPORT_TIMES if value_at(t, s, x) is not None)
         print(f"{law}: t = {t[-1]:g} s reached ({clock(run_.cpu_seconds())} processor time); {reached}")
         ax.plot(t, s, style, label=f"TFDEM, {law} drag")
@@ -105,25 +84,7 @@ def report(root=HERE):
 
 
 def main(argv=None):
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    sub = parser.add_subparsers(dest="action", required=True)
-    run_parser = sub.add_parser("run")
-    run_parser.add_argument("--end-time", type=float, default=60.0)
-    run_parser.add_argument("--jobs", type=int, default=2)
-    run_parser.add_argument("--ranks", type=int, default=1)
-    run_parser.add_argument("--laws", nargs="+", choices=sorted(LAWS), default=list(LAWS))
-    sub.add_parser("report")
-    args = parser.parse_args(argv)
-    if args.action == "report":
-        report()
-        return 0
-    if not os.path.exists(os.path.join(HERE, "bed.data")):
-        print("pouring the bed (tfdem.packing, packing.yaml)", flush=True)
-        print(pour_case(HERE), flush=True)
-    runs = [SegregationRun(law, args.ranks) for law in args.laws]
-    ok = run_batch(runs, args.end_time, args.jobs)
-    report()
-    return 0 if ok else 1
+    return variants_command_line(__doc__, HERE, LAWS, segregation_run, report, 60.0, argv)
 
 
 if __name__ == "__main__":
