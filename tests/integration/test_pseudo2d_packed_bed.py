@@ -6,7 +6,7 @@ it: tutorials/pseudo2d_packed_bed, packed by tfdem.packing from its packing.yaml
 - Pressure drop between the probe rows against Ergun (1952) at the slab's measured solid
   fraction (exact sphere-slab volumes, tfdem.physics.slab_solid_fraction), one cell deep and
   in the 3-D variant (tfdem.fixed_bed.DEEP_CELLS cells in depth): within 1 % (the issue asks
-  3 %; measured -0.44 to +0.25 % over two pours, the spread from the cells' gas fraction varying about the
+  3 %; measured -0.44 to +0.25 % over three pours, the spread from the cells' gas fraction varying about the
   mean, as Ergun is not linear in it).
 - Front and back walls: slip one cell deep; noSlip in the 3-D variant, whose wall shear adds
   to the pressure drop about 2 mu (U/eps) / (dz/2) / depth per metre (dz = depth/DEEP_CELLS,
