@@ -16,25 +16,20 @@ it: tutorials/pseudo2d_packed_bed, packed by tfdem.packing from its packing.yaml
 import os
 
 from tfdem import TUTORIALS
-from tfdem.case import Case
 from tfdem.fixed_bed import DEEP_CELLS, PouredBed, poured_bed_runs
-from tfdem.packing import packing_settings, pour_case
-from tfdem_testlib import Checks, run, scratch
+from tfdem_testlib import Checks, poured_copy, run
 
 TUTORIAL = os.path.join(TUTORIALS, "pseudo2d_packed_bed")
 
 
 def main():
     checks = Checks()
-    case = Case(TUTORIAL).copy_to(os.path.join(scratch("pseudo2d_packed_bed"), "case"), extra=("packing.yaml",))
-    summary = pour_case(case, runner=lambda *a, **k: run(*a[:3], ranks=k.get("ranks", 1)))
-    print(summary)
-    count = packing_settings(case)["count"]
-    checks.true("every particle poured", len(case.particles()["id"]) == count, f"({summary})")
+    case, count = poured_copy(TUTORIAL, "pseudo2d_packed_bed", 1.0)
+    checks.true("every particle poured", len(case.particles()["id"]) == count, f"({len(case.particles()['id'])})")
     bed = PouredBed(case)
     checks.true("random packing's gas fraction in the slab", 0.36 < bed.eps < 0.44, f"({bed.eps:.4f})")
 
-    runs = os.path.join(os.path.dirname(case.path), "runs")
+    runs = case.file("runs")
     results = poured_bed_runs(case, runs, runner=lambda args, cwd, log: run(args, cwd, log))
     for (name, u), (dp, expected) in results.items():
         checks.close(f"{name}: pressure drop at U = {u} m/s (Pa)", dp, expected, 0.01)

@@ -15,11 +15,10 @@ import sys
 
 from tfdem import TUTORIALS
 from tfdem.batch import run_batch
-from tfdem.case import Case, set_yaml_value
 from tfdem.outputs import particle_statistics
-from tfdem.packing import packing_settings, pour_case
+from tfdem.packing import packing_settings
 from tfdem.physics import sphere_volume
-from tfdem_testlib import Checks, run, scratch
+from tfdem_testlib import Checks, poured_copy
 
 TUTORIAL = os.path.join(TUTORIALS, "bidisperse_segregation")
 sys.path.insert(0, TUTORIAL)
@@ -28,18 +27,14 @@ import segregation  # noqa: E402
 
 def main():
     checks = Checks()
-    root = scratch("segregation")
-    case = Case(TUTORIAL).copy_to(root, extra=("packing.yaml", "segregation.py"))
-    settings = packing_settings(case)
-    count = settings["count"] // 10
-    set_yaml_value(case.file("packing.yaml"), "count", count)
-    print(pour_case(case, runner=lambda *a, **k: run(*a[:3])))
+    case, count = poured_copy(TUTORIAL, "segregation", 0.1)
+    root = case.path
     particles = case.particles()
     small, large = case.particle_diameters()
     mass = {d: sum(sphere_volume(x) for x in particles["diameter"] if abs(x - d) < 1e-9) for d in (small, large)}
     checks.true("every particle poured", len(particles["id"]) == count, f"({len(particles['id'])} of {count})")
     fraction = mass[small] / (mass[small] + mass[large])
-    expected = settings["mass_fraction_small"]
+    expected = packing_settings(case)["mass_fraction_small"]
     p_small = (expected / sphere_volume(small)) / (expected / sphere_volume(small) + (1 - expected) / sphere_volume(large))
     sigma = expected * (1 - expected) / math.sqrt(count * p_small * (1 - p_small))  # of the binomial N_small
     checks.within("small size's mass fraction", fraction, expected, 3 * sigma)

@@ -16,9 +16,7 @@ import sys
 
 from tfdem import TUTORIALS, bubble, outputs
 from tfdem.batch import run_batch
-from tfdem.case import Case, set_yaml_value
-from tfdem.packing import packing_settings, pour_case
-from tfdem_testlib import Checks, run, scratch
+from tfdem_testlib import Checks, poured_copy
 
 TUTORIAL = os.path.join(TUTORIALS, "single_bubble")
 sys.path.insert(0, TUTORIAL)
@@ -27,11 +25,8 @@ import bubble as driver  # noqa: E402  (the tutorial's bubble.py)
 
 def main():
     checks = Checks()
-    root = scratch("single_bubble")
-    case = Case(TUTORIAL).copy_to(root, extra=("packing.yaml", "bubble.py"))
-    count = packing_settings(case)["count"] // 10
-    set_yaml_value(case.file("packing.yaml"), "count", count)
-    print(pour_case(case, runner=lambda *a, **k: run(*a[:3])))
+    case, count = poured_copy(TUTORIAL, "single_bubble", 0.1)
+    root = case.path
     start, end = driver.jet_window(case)
     checks.true("jet window from 0/U", (start, end) == (0.1, 0.25), f"({start}, {end})")
 

@@ -26,6 +26,18 @@ def copy_case(source, name):
     return Case(source).copy_to(os.path.join(BUILD_DIR, "test-runs", name)).path
 
 
+def poured_copy(tutorial, name, fraction, extra=()):
+    """A copy of a poured-bed tutorial under build/test-runs/name with `fraction` of its
+    packing.yaml count, poured there (its bed.data); returns (the copy, the count)."""
+    from tfdem.case import set_yaml_value
+    from tfdem.packing import packing_settings, pour_case
+    case = Case(tutorial).copy_to(scratch(name), extra=("packing.yaml",) + tuple(extra))
+    count = int(packing_settings(case)["count"] * fraction)
+    set_yaml_value(case.file("packing.yaml"), "count", count)
+    print(pour_case(case, runner=lambda *a, **k: run(*a[:3])))
+    return case, count
+
+
 def run(args, cwd, log_name, ranks=1, expect_success=True):
     """Run a command (under mpirun when ranks > 1; OpenFOAM solvers and tools get -parallel
     themselves in args); return (exit code, combined output); a failure ends the test."""
