@@ -161,7 +161,7 @@ void Foam::tfdemChecks::particles
             << " and its data file) has diameters " << dMin << " to " << dMax
             << " m and densities " << rhoMin << " to " << rhoMax << " kg/m^3; "
             << config.file.c_str() << " gives particles.diameter = "
-            << diameterList(config) << " m, particles.density = "
+            << diameterList(config).c_str() << " m, particles.density = "
             << config.particle_density << " kg/m^3. Make them equal."
             << exit(FatalError);
     }
