@@ -10,6 +10,9 @@ namespace {
 
 double norm3(const double *v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
 
+// Sauter mean diameter sum w d^3 / sum w d^2 of one cell's solid sums (0 when empty).
+double sauter_of(const double *sums) { return sums[5] > 0.0 ? sums[4] / sums[5] : 0.0; }
+
 // Averaged particle drag: the cell's drag V_c K_c (u_c - v_sm) shared by volume.
 void averaged_particle_drag(const CellWeights &w, const ParticleView &p, const CellSolidsState &cells,
                             TransferResult &r) {
@@ -39,15 +42,14 @@ std::vector<double> per_particle_drag(const CellWeights &w, const ParticleView &
   const bool polydisperse = o.polydispersity != drag::Polydispersity::OwnDiameter;
   if (polydisperse && !cells.sauter_diameter)
     throw std::invalid_argument("transfer: polydisperse drag needs the cells' Sauter diameters");
-  const std::vector<double> sauter =
-      polydisperse ? average_to_particles(w, cells.sauter_diameter, 1) : std::vector<double>(p.count, 0.0);
+  const std::vector<double> sauter = polydisperse ? average_to_particles(w, cells.sauter_diameter, 1) : std::vector<double>();
   std::vector<double> exchange_coefficient(p.count);
   for (std::size_t i = 0; i < p.count; ++i) {
     double slip[3];
     for (int a = 0; a < 3; ++a) slip[a] = g.velocity[3 * i + a] - p.velocity[3 * i + a];
     const double d = p.diameter[i];
-    exchange_coefficient[i] =
-        sphere_volume(d) * particle_beta_per_solid_fraction(o, g.void_fraction[i], d, sauter[i], norm3(slip));
+    exchange_coefficient[i] = sphere_volume(d) * particle_beta_per_solid_fraction(
+                                                     o, g.void_fraction[i], d, polydisperse ? sauter[i] : d, norm3(slip));
     for (int a = 0; a < 3; ++a) r.particle_drag[3 * i + a] = exchange_coefficient[i] * slip[a];
   }
   return exchange_coefficient;
@@ -124,16 +126,12 @@ void averaged_cell_drag(const std::vector<double> &sums, const CellGas &cells, c
       solid_velocity[3 * c + a] = s[1 + a] / s[0];
       slip[a] = cells.velocity[3 * c + a] - solid_velocity[3 * c + a];
     }
-    const double sauter = s[4] / s[5];
-    exchange_coefficient[c] = drag::beta(o.law, {cells.void_fraction[c], sauter, norm3(slip)}, o.gas);
+    exchange_coefficient[c] = drag::beta(o.law, {cells.void_fraction[c], sauter_of(s), norm3(slip)}, o.gas);
   }
 }
 
 void sauter_diameters(const std::vector<double> &sums, std::size_t cell_count, double *sauter_diameter) {
-  for (std::size_t c = 0; c < cell_count; ++c) {
-    const double *s = &sums[kSolidSumComponents * c];
-    sauter_diameter[c] = s[5] > 0.0 ? s[4] / s[5] : 0.0;
-  }
+  for (std::size_t c = 0; c < cell_count; ++c) sauter_diameter[c] = sauter_of(&sums[kSolidSumComponents * c]);
 }
 
 std::vector<double> particle_drag_and_force(const CellWeights &weights, const ParticleView &particles,

@@ -25,19 +25,24 @@ class FixedBed:
     of the region, Ergun's pressure drop plus the gas weight between the probes."""
 
     def __init__(self, case, region="bed", probes="pressure"):
-        self.case = case if isinstance(case, Case) else Case(case)
+        self._read_case(case, probes)
         dem = self.case.dem()
-        self.d, _ = self.case.particle_properties()
-        self.rho_g, self.mu = self.case.gas()
-        self.g = self.case.gravity_magnitude()
         self.particles = len(dem.lattice_sites(region))
         (x0, y0, _), (x1, y1, _) = dem.region(region)
-        lo, hi = self.case.mesh_bounds()
-        self.width, self.depth = hi[0] - lo[0], hi[2] - lo[2]
         self.height = y1 - y0
         self.eps = 1.0 - self.particles * sphere_volume(self.d) / ((x1 - x0) * self.height * self.depth)
         below, above = self.case.probe_locations(probes)[:2]
         self.probe_gap = above[1] - below[1]
+
+    def _read_case(self, case, probes):
+        """What every fixed bed reads from its case: particle size, gas, gravity, the column's
+        width and depth, the probes function's name."""
+        self.case = case if isinstance(case, Case) else Case(case)
+        self.d, _ = self.case.particle_properties()
+        self.rho_g, self.mu = self.case.gas()
+        self.g = self.case.gravity_magnitude()
+        lo, hi = self.case.mesh_bounds()
+        self.width, self.depth = hi[0] - lo[0], hi[2] - lo[2]
         self.probes = probes
 
     def extra_files(self):
@@ -89,18 +94,12 @@ class PouredBed(FixedBed):
     """
 
     def __init__(self, case, probes="pressure"):
-        self.case = case if isinstance(case, Case) else Case(case)
-        self.d, _ = self.case.particle_properties()
-        self.rho_g, self.mu = self.case.gas()
-        self.g = self.case.gravity_magnitude()
-        self.probes = probes
+        self._read_case(case, probes)
         heights = sorted({round(p[1], 9) for p in self.case.probe_locations(probes)})
         if len(heights) != 2:
             raise CaseError(f"{self.case.file('system', 'controlDict')}: probes '{probes}' must lie in two"
                             f" rows (heights), found {len(heights)}")
         self.below, self.above = heights
-        lo, hi = self.case.mesh_bounds()
-        self.width, self.depth = hi[0] - lo[0], hi[2] - lo[2]
         self.height = self.probe_gap = self.above - self.below
         self.eps = 1.0 - slab_solid_fraction(self.case.particles(), self.below, self.above, self.width * self.depth)
 
@@ -113,18 +112,23 @@ class PouredBed(FixedBed):
         return statistics.fmean(lower) - statistics.fmean(upper)
 
     def extra_files(self):
-        return (os.path.basename(self.case.dem().read_data()),)
+        return data_file_of(self.case)
 
     def expected_particle_force(self, u):
         raise CaseError("a poured bed's total particle force is not Ergun's: its solid fraction varies with"
                         " height; compare the pressure drop between the probe rows")
 
 
+def data_file_of(case):
+    """(name,) of the data file the case's DEM script reads, for Case.copy_to's extra."""
+    return (os.path.basename(case.dem().read_data()),)
+
+
 def deep_variant(case, dest, cells_in_depth, front_and_back="type noSlip;"):
     """A copy of a one-cell-deep column case at dest with `cells_in_depth` cells across its depth
     and the gas condition `front_and_back` on the patch frontAndBack (the 3-D variant)."""
     source = case if isinstance(case, Case) else Case(case)
-    copy = source.copy_to(dest, extra=(os.path.basename(source.dem().read_data()),))
+    copy = source.copy_to(dest, extra=data_file_of(source))
     copy.scale_cells(2, cells_in_depth)
     copy.set_patch_condition("U", "frontAndBack", front_and_back)
     return copy

@@ -19,6 +19,7 @@ import sys
 
 from tfdem import outputs
 from tfdem.batch import VariantRun, clock, variants_command_line
+from tfdem.stats import value_at
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 LAWS = {
@@ -47,14 +48,6 @@ def segregation_series(law, root=HERE):
     return stats["t"], stats.get("segregation", [])
 
 
-def value_at(times, values, t):
-    """The sample at time t (within half a sample interval), else None."""
-    for ti, vi in zip(times, values):
-        if abs(ti - t) < 0.05:
-            return vi
-    return None
-
-
 def report(root=HERE):
     import matplotlib
     matplotlib.use("Agg")
@@ -66,7 +59,7 @@ def report(root=HERE):
             print(f"{law}: no samples yet")
             continue
         run_ = segregation_run(law, 1, root)
-        reached = ", ".join(f"s({x:g} s) = {value_at(t, s, x):.3f}" for x in REPORT_TIMES if value_at(t, s, x) is not None)
+        reached = ", ".join(f"s({x:g} s) = {value_at(t, s, x):.3f}" for x in REPORT_TIMES if x <= t[-1] + 1e-9)
         print(f"{law}: t = {t[-1]:g} s reached ({clock(run_.cpu_seconds())} processor time); {reached}")
         ax.plot(t, s, style, label=f"TFDEM, {law} drag")
     ax.plot([60], [SEED_AT_60_S["polydisperse"]], "ks", mfc="none", label="seed 001, polydisperse drag (60 s)")

@@ -17,6 +17,8 @@ import re
 import statistics
 import sys
 
+import numpy
+
 from tfdem import bubble, outputs
 from tfdem.batch import VariantRun, clock, variants_command_line
 from tfdem.case import Case, CaseError
@@ -75,9 +77,7 @@ def rise_velocity(history, start, end):
     points = [(t, b["y"]) for t, b in history if b is not None and start <= t <= end]
     if len(points) < 3:
         return None
-    t_mean = statistics.fmean(t for t, _ in points)
-    y_mean = statistics.fmean(y for _, y in points)
-    return sum((t - t_mean) * (y - y_mean) for t, y in points) / sum((t - t_mean) ** 2 for t, _ in points)
+    return float(numpy.polyfit([t for t, _ in points], [y for _, y in points], 1)[0])
 
 
 def mixing(case_path, root=HERE):
