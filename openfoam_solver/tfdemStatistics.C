@@ -4,6 +4,7 @@
 #include <mpi.h>
 
 #include <cmath>
+#include <limits>
 
 #include "dem_instance.h"
 #include "tfdem/analysis.h"
@@ -152,10 +153,16 @@ void Foam::TfdemStatistics::writeSeriesRow
             << ' ' << counts.multicontact();
         if (sizeThreshold_ > 0)
         {
+            // Undefined (nan, not 0 = mixed) once one size has left the bed
             const bool bothSizes =
                 segregation.count_small > 0 && segregation.count_large > 0;
             *series_
-                << ' ' << (bothSizes ? tfdem::analysis::segregation_degree(segregation) : 0);
+                << ' '
+                << (
+                       bothSizes
+                     ? tfdem::analysis::segregation_degree(segregation)
+                     : std::numeric_limits<double>::quiet_NaN()
+                   );
         }
         *series_ << endl;
     }
