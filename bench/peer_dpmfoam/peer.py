@@ -4,12 +4,15 @@ openfoam-examples: 24,750 glass beads of 2.5 mm, 2526 kg/m^3, in a 15 x 150 x 45
 of 2 x 30 x 90 cells, air at 1.875 m/s through the bottom), both codes started from the same
 packed bed and run for the same simulated time on this machine.
 
-    peer.py run [--end-time 0.01] [--root DIR] [--only tfdem|dpmfoam]
-    peer.py report [--root DIR]
+    peer.py run [--start packed|fluidized] [--end-time 0.01] [--root DIR] [--only tfdem|dpmfoam]
+    peer.py report [--start packed|fluidized] [--root DIR]
 
-0.01 s from the packed bed is the bed lifting off: every particle in contact, the gas through
-the whole bed. DPMFoam needs about 13 processor minutes for it on this machine (77,000 s per
-simulated second); longer spans scale with it (`--end-time 0.1`: about 2 h).
+`--start packed` (the default): 0.01 s from the packed bed is the bed lifting off, every
+particle in contact, the gas through the whole bed. DPMFoam needs about 13 processor minutes
+for it on this machine (77,000 s per simulated second); longer spans scale with it.
+`--start fluidized [--fluidize 0.3]`: TFDEM first fluidizes the packed bed for 0.3 s; both codes
+then start from that expanded, bubbling bed (positions; at rest, as DPMFoam's manual injection
+gives every particle one velocity) and run --end-time from there (runs/fluidized/).
 
 Both actions first check that case/ states the tutorial's air, inflow and particles (read from
 the tutorial's files) and stop naming any that differs. `run` (each step skipped when done):
@@ -19,6 +22,7 @@ the tutorial's files) and stop naming any that differs. `run` (each step skipped
    contact, case/in.bed says how its damping maps onto LIGGGHTS') from the packed bed;
 3. DPMFoam: the tutorial unchanged except its initial positions (the packed bed), its end
    time, ascii output and the same two pressure probes as TFDEM's.
+With `--start fluidized`, a TFDEM run from the packed bed (runs/fluidize/) gives the start.
 Each run's processor time (the solver's, from the operating system) and wall time are kept.
 `report` writes root/report/README.md and peer.png: processor seconds per simulated second
 side by side and their ratio, and the bed statistic both compute, the pressure drop across
@@ -37,7 +41,7 @@ import sys
 import time
 
 from tfdem.case import Case, CaseError, number, read_data_file, set_dict_entries, sphere_volume, sub_dict
-from tfdem.outputs import OutputError, probes, solver_timing
+from tfdem.outputs import OutputError, probes, solver_timing, vtk_particles
 from tfdem.physics import ergun_gradient
 from tfdem.run import RunError, run
 
@@ -167,11 +171,11 @@ def lattice_positions():
     return [tuple(float(v) for v in m) for m in row.findall(text)]
 
 
-def write_lattice_data(path, positions, diameter, density):
+def write_bed_data(path, positions, diameter, density):
     """A LIGGGHTS data file (atom style granular, 2 types: 1 particles, 2 walls) of the
-    positions in DPMFoam's box."""
+    positions in DPMFoam's box, at rest."""
     (x0, y0, z0), (x1, y1, z1) = Case(os.path.join(HERE, "case")).mesh_bounds()
-    lines = ["DPMFoam Goldschmidt lattice (bench/peer_dpmfoam/peer.py)", "", f"{len(positions)} atoms",
+    lines = ["DPMFoam Goldschmidt bed (bench/peer_dpmfoam/peer.py)", "", f"{len(positions)} atoms",
              "2 atom types", "", f"{x0} {x1} xlo xhi", f"{y0} {y1} ylo yhi", f"{z0} {z1} zlo zhi", "", "Atoms", ""]
     lines += [f"{i + 1} 1 {diameter} {density} {x} {y} {z} 0 0 0" for i, (x, y, z) in enumerate(positions)]
     with open(path, "w") as f:
@@ -186,7 +190,7 @@ def packed_bed(root):
         return out
     os.makedirs(pack, exist_ok=True)
     diameter, density = Case(os.path.join(HERE, "case")).particle_properties()
-    write_lattice_data(os.path.join(pack, "lattice.data"), lattice_positions(), diameter, density)
+    write_bed_data(os.path.join(pack, "lattice.data"), lattice_positions(), diameter, density)
     shutil.copy(os.path.join(HERE, "in.pack"), pack)
     print("settling the tutorial's lattice (LIGGGHTS only) ...", flush=True)
     contact = cloud_contacts()
@@ -202,12 +206,8 @@ def save(path, record):
         json.dump(record, f, indent=1)
 
 
-def run_tfdem(root, end_time):
-    path = os.path.join(root, "tfdem")
-    result = os.path.join(path, "peer.json")
-    if os.path.isfile(result):
-        return
-    bed = packed_bed(root)
+def tfdem_case(path, bed):
+    """case/ copied to path with DPMFoam's contacts and the start bed, meshed."""
     if os.path.isdir(path):
         shutil.rmtree(path)
     case = Case(os.path.join(HERE, "case")).copy_to(path)
@@ -218,20 +218,56 @@ def run_tfdem(root, end_time):
     with open(script, "w") as f:
         f.write("".join(f"variable        {k} index {v:.6g}\n" for k, v in variables.items()) + text)
     shutil.copy(bed, case.file(os.path.basename(case.dem().read_data())))
-    case.set_control(endTime=end_time, writeInterval=end_time)
     run(["blockMesh"], path, "log.blockMesh")
+    return case
+
+
+def fluidized_bed(root, fluidize_time):
+    """The start of `--start fluidized` (root/fluidize/fluidized_bed.data), made once: the
+    packed bed fluidized by TFDEM for fluidize_time, its particles' positions at rest."""
+    path = os.path.join(root, "fluidize")
+    out = os.path.join(path, "fluidized_bed.data")
+    if os.path.isfile(out):
+        return out
+    case = tfdem_case(path, packed_bed(root))
+    case.set_control(endTime=fluidize_time, writeInterval=fluidize_time)
+    print(f"fluidizing the packed bed with TFDEM for {fluidize_time} s ...", flush=True)
+    run(["tfdemFoam"], path, "log.tfdemFoam")
+    final = vtk_particles(os.path.join(path, "VTK", f"particles_{fluidize_time:g}.vtk"))
+    diameter, density = case.particle_properties()
+    write_bed_data(out + ".tmp", final["position"], diameter, density)
+    os.replace(out + ".tmp", out)
+    return out
+
+
+def start_bed(root, start, fluidize_time):
+    return packed_bed(root) if start == "packed" else fluidized_bed(root, fluidize_time)
+
+
+def runs_folder(root, start):
+    """Where the two codes' runs from `start` and their report go."""
+    return root if start == "packed" else os.path.join(root, "fluidized")
+
+
+def run_tfdem(folder, bed, end_time):
+    path = os.path.join(folder, "tfdem")
+    result = os.path.join(path, "peer.json")
+    if os.path.isfile(result):
+        return
+    case = tfdem_case(path, bed)
+    case.set_control(endTime=end_time, writeInterval=end_time)
     print(f"TFDEM, {end_time} s ...", flush=True)
     wall, cpu = timed(["tfdemFoam"], path, "log.tfdemFoam")
     save(result, {"end_time": end_time, "wall": wall, "cpu": cpu, "split": solver_timing(case.file("log.tfdemFoam"))})
     print(f"  wall {wall:.0f} s, processor {cpu:.0f} s", flush=True)
 
 
-def run_dpmfoam(root, end_time):
-    path = os.path.join(root, "dpmfoam")
+def run_dpmfoam(folder, bed, end_time):
+    path = os.path.join(folder, "dpmfoam")
     result = os.path.join(path, "peer.json")
     if os.path.isfile(result):
         return
-    atoms = read_data_file(packed_bed(root))
+    atoms = read_data_file(bed)
     if os.path.isdir(path):
         shutil.rmtree(path)
     shutil.copytree(tutorial(), path)
@@ -299,15 +335,16 @@ def packed_ergun(root):
     return eps, ergun_gradient(u, eps, diameter, rho, mu) * height
 
 
-def report(root):
+def report(root, start):
+    folder = runs_folder(root, start)
     codes = {}
     for code, factor in (("tfdem", 1.0), ("dpmfoam", Case(os.path.join(HERE, "case")).gas()[0])):
-        result = os.path.join(root, code, "peer.json")
+        result = os.path.join(folder, code, "peer.json")
         if not os.path.isfile(result):
-            raise PeerError(f"{result} is missing: run `peer.py run` first")
+            raise PeerError(f"{result} is missing: run `peer.py run --start {start}` first")
         with open(result) as f:
             record = json.load(f)
-        record["t"], record["dp"] = pressure_drop(os.path.join(root, code), factor)
+        record["t"], record["dp"] = pressure_drop(os.path.join(folder, code), factor)
         record["dp_mean"], record["dp_std"] = window_stats(record["t"], record["dp"], record["end_time"] / 2)
         codes[code] = record
     tf, dp = codes["tfdem"], codes["dpmfoam"]
@@ -315,7 +352,7 @@ def report(root):
         raise PeerError(f"the runs simulated different times ({tf['end_time']} and {dp['end_time']} s): run both again")
     weight = bed_weight_per_area(root)
     eps, ergun = packed_ergun(root)
-    out = os.path.join(root, "report")
+    out = os.path.join(folder, "report")
     os.makedirs(out, exist_ok=True)
     rows = ["| code | simulated (s) | processor (s) | per simulated s | wall (s) | Δp mean, 2nd half (Pa) | "
             "Δp std (Pa) | Δp mean ÷ bed weight per area |", "|---|---|---|---|---|---|---|---|"]
@@ -326,7 +363,8 @@ def report(root):
     alphas = {name: cloud_contacts()[name + "_alpha"] for name in ("pair", "wall")}
     checks = ", ".join(f"{name} alpha {alpha:g} -> e = {restitution(alpha):.5f} (a collision integrated with "
                        f"DPMFoam's law: {integrated_restitution(alpha):.5f})" for name, alpha in alphas.items())
-    text = ("# TFDEM against DPMFoam on DPMFoam's Goldschmidt tutorial (bench/peer_dpmfoam/peer.py)\n\n"
+    text = ("# TFDEM against DPMFoam on DPMFoam's Goldschmidt tutorial (bench/peer_dpmfoam/peer.py), "
+            f"from the {start} bed\n\n"
             + "\n".join(rows) + f"\n\nDPMFoam ÷ TFDEM processor time: **{ratio:.1f}**. Bed weight per unit area "
             f"(N m_p g / A, buoyancy removed): {weight:.0f} Pa; Ergun's pressure drop over the packed bed "
             f"(gas fraction {eps:.3f}) at the inflow velocity: {ergun:.0f} Pa. TFDEM's restitution from "
@@ -355,22 +393,27 @@ def plot(codes, weight, path):
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("action", choices=("run", "report"))
+    parser.add_argument("--start", choices=("packed", "fluidized"), default="packed")
+    parser.add_argument("--fluidize", type=float, default=0.3, help="s of TFDEM from the packed bed that make "
+                        "the fluidized start")
     parser.add_argument("--end-time", type=float, default=0.01)
     parser.add_argument("--root", default=os.path.join(HERE, "runs"))
     parser.add_argument("--only", choices=("tfdem", "dpmfoam"))
     args = parser.parse_args(argv)
-    if args.end_time <= 0:
-        parser.error("--end-time must be positive")
+    if args.end_time <= 0 or args.fluidize <= 0:
+        parser.error("--end-time and --fluidize must be positive")
     try:
         check_same_scene()
         if args.action == "run":
+            bed = start_bed(args.root, args.start, args.fluidize)
+            folder = runs_folder(args.root, args.start)
             if args.only in (None, "tfdem"):
-                run_tfdem(args.root, args.end_time)
+                run_tfdem(folder, bed, args.end_time)
             if args.only in (None, "dpmfoam"):
-                run_dpmfoam(args.root, args.end_time)
+                run_dpmfoam(folder, bed, args.end_time)
             if args.only:
                 return 0
-        report(args.root)
+        report(args.root, args.start)
     except (PeerError, CaseError, RunError, OutputError) as e:
         sys.exit(f"peer.py: {e}")
     return 0
