@@ -129,7 +129,7 @@ class Point(CaseRun):
         run(["blockMesh"], case.path, "log.blockMesh")
         write_bed_probes(case, self.sweep["field_interval"], self.sweep["statistics_interval"])
         if self.ranks > 1:
-            decompose(case.path, (self.ranks, 1, 1))
+            decompose(case.path, self.ranks)
 
     def _packing(self):
         """The initial packed bed (sweep `packing`: its file and the script that makes it, both

@@ -110,7 +110,7 @@ def prepare(path, factor, ranks, end_time):
     particles = tile_data_file(packing(), data, factor, width)
     run(["blockMesh"], path, "log.blockMesh")
     if ranks > 1:
-        decompose(path, (ranks, 1, 1))
+        decompose(path, ranks)
     return case, particles
 
 

@@ -270,7 +270,7 @@ class VariantRun(CaseRun):
         tfdem.run.run(["blockMesh"], self.case.path, "log.blockMesh")
         self.prepare_mesh()
         if self.ranks > 1:
-            tfdem.run.decompose(self.case.path, (self.ranks, 1, 1))
+            tfdem.run.decompose(self.case.path, self.ranks)
 
     def prepare_mesh(self):
         """Steps between blockMesh and the decomposition (none here)."""

@@ -1,5 +1,6 @@
 """Running TFDEM's programs and OpenFOAM's tools: environment, MPI, decomposition."""
 import os
+import re
 import subprocess
 
 from tfdem import BUILD_DIR, SOURCE_DIR
@@ -58,6 +59,34 @@ def start(args, cwd, log_name, ranks=1):
                             stderr=subprocess.STDOUT, start_new_session=True)
 
 
+# A gas mesh with fewer cells per rank than this is solved whole on the first rank while
+# every rank runs its part of the DEM. Split, each part keeps most of the gas step's fixed
+# cost and every pressure iteration waits on the halo exchange: the bubbling bed's gas step
+# (bench/README.md, "Cost against bed size") took 0.63 ms + 3.8 us per cell serial and
+# 2.2 ms + 4.4 us per cell of a part split in two, equal at ~1000 cells, 500 per rank.
+SPLIT_GAS_FROM_CELLS_PER_RANK = 500
+
+
+def mesh_cell_count(case_path):
+    """Cells of the case's constant/polyMesh (the note OpenFOAM writes in its owner file)."""
+    path = os.path.join(case_path, "constant", "polyMesh", "owner")
+    try:
+        with open(path, errors="replace") as f:
+            head = f.read(2000)
+    except OSError:
+        raise RunError(f"{path} is missing: make the mesh (blockMesh) before decomposing") from None
+    found = re.search(r"nCells:\s*(\d+)", head)
+    if not found:
+        raise RunError(f"{path}: no 'nCells:' in its header note; decompose it by hand (decomposePar)")
+    return int(found.group(1))
+
+
+def gas_layout(cells, ranks):
+    """'whole' (every gas cell on the first rank) or 'split' (`ranks` equal parts in x, as
+    LIGGGHTS' `processors * 1 1` cuts the particles) for a mesh of `cells` cells."""
+    return "whole" if ranks > 1 and cells / ranks < SPLIT_GAS_FROM_CELLS_PER_RANK else "split"
+
+
 def write_decompose_dict(case_path, split):
     """system/decomposeParDict: simple decomposition into split = (nx, ny, nz)."""
     nx, ny, nz = split
@@ -67,7 +96,46 @@ def write_decompose_dict(case_path, split):
                   f"coeffs          {{ n ({nx} {ny} {nz}); }}\n")
 
 
-def decompose(case_path, split):
-    """Decompose the case's mesh and fields for len(split) ranks."""
-    write_decompose_dict(case_path, split)
+def write_whole_gas_dict(case_path, ranks):
+    """system/decomposeParDict and constant/cellDecomposition putting every cell on the first
+    of `ranks` ranks (the others get an empty mesh)."""
+    cells = mesh_cell_count(case_path)
+    with open(os.path.join(case_path, "constant", "cellDecomposition"), "w") as out:
+        out.write("FoamFile { version 2.0; format ascii; class labelList; object cellDecomposition; }\n"
+                  f"{cells}\n(\n" + "0\n" * cells + ")\n")
+    with open(os.path.join(case_path, "system", "decomposeParDict"), "w") as out:
+        out.write("FoamFile { version 2.0; format ascii; class dictionary; object decomposeParDict; }\n"
+                  f"numberOfSubdomains {ranks};\nmethod          manual;\n"
+                  "coeffs          { dataFile \"cellDecomposition\"; }\n")
+
+
+def decompose(case_path, ranks, layout=None):
+    """Decompose the case's mesh and fields for `ranks` ranks; the layout gas_layout chooses
+    unless given. Returns the layout."""
+    layout = layout or gas_layout(mesh_cell_count(case_path), ranks)
+    if layout == "whole":
+        write_whole_gas_dict(case_path, ranks)
+    elif layout == "split":
+        write_decompose_dict(case_path, (ranks, 1, 1))
+    else:
+        raise ValueError(f"gas layout '{layout}': use 'whole' or 'split'")
     run(["decomposePar", "-force"], case_path, "log.decomposePar")
+    return layout
+
+
+def main(argv=None):
+    """python3 -m tfdem.run decompose CASE RANKS [whole|split]: decompose a case (Allrun scripts)."""
+    import sys
+    args = sys.argv[1:] if argv is None else argv
+    if len(args) not in (3, 4) or args[0] != "decompose" or not args[2].isdigit() or int(args[2]) < 2:
+        sys.exit("usage: python3 -m tfdem.run decompose CASE RANKS(>= 2) [whole|split]")
+    try:
+        layout = decompose(args[1], int(args[2]), args[3] if len(args) == 4 else None)
+    except (RunError, ValueError) as e:
+        sys.exit(f"tfdem.run: {e}")
+    print(f"gas {layout} on {args[2]} ranks")
+    return 0
+
+
+if __name__ == "__main__":
+    main()

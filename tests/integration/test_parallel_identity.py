@@ -2,7 +2,9 @@
 
 On 2 ranks the gas mesh is split in y (decomposePar, simple 1 2 1) and LIGGGHTS in x
 (`processors 2 1 1`), so particles sit in cells another rank owns; the run must report cell
-records exchanged between ranks. Compared:
+records exchanged between ranks. The packed bed runs on 2 ranks a second time with the gas
+whole on the first rank (tfdem.run.decompose's layout for small meshes): every particle of the
+second DEM rank is then in a cell of the other rank. Compared:
   - settling sphere: its velocity every 0.01 s over 0.5 s (it falls from the upper gas
     subdomain into the lower one while staying on one DEM rank), relative to u_t;
   - packed bed at U = 0.6 m/s: the probe pressures below and above the bed, relative to the
@@ -17,6 +19,7 @@ from tfdem.case import Case
 from tfdem.fixed_bed import FixedBed
 from tfdem.outputs import dump_track, log_numbers
 from tfdem.physics import SettlingSphere
+from tfdem.run import decompose
 from tfdem_testlib import Checks, copy_case, fail, run, write_decompose_dict
 
 TOLERANCE = 1e-8
@@ -31,8 +34,9 @@ def split_dem_in_x(case):
     open(path, "w").write(text.replace("create_box", "processors      2 1 1\ncreate_box", 1))
 
 
-def run_case(source, name, ranks, edit=None):
-    """Copy, mesh and run a tutorial case on `ranks` ranks; return the case dir."""
+def run_case(source, name, ranks, edit=None, gas="y_split"):
+    """Copy, mesh and run a tutorial case on `ranks` ranks, the gas split in y or `whole`;
+    return the case dir."""
     case = copy_case(source, name)
     if edit:
         edit(case)
@@ -41,8 +45,11 @@ def run_case(source, name, ranks, edit=None):
         run(["tfdemFoam"], case, "log.tfdemFoam")
         return case
     split_dem_in_x(case)
-    write_decompose_dict(case, (1, 2, 1))
-    run(["decomposePar"], case, "log.decomposePar")
+    if gas == "whole":
+        decompose(case, ranks, "whole")
+    else:
+        write_decompose_dict(case, (1, 2, 1))
+        run(["decomposePar"], case, "log.decomposePar")
     run(["tfdemFoam", "-parallel"], case, "log.tfdemFoam", ranks=ranks)
     return case
 
@@ -79,6 +86,11 @@ def main():
     dp_two = bed.measured_pressure_drop(parallel)
     checks.close("packed bed: pressure drop on 2 ranks vs 1 (Pa)", dp_two, dp_one, TOLERANCE)
     checks.close("packed bed: pressure drop vs Ergun (Pa)", dp_two, bed.expected_pressure_drop(0.6), 0.03)
+    whole = run_case(source, "identity_packed_2_whole", 2, edit, gas="whole")
+    checks.true("packed bed, gas whole on rank 0: particles of rank 1 in its cells", remote_records(whole) > 0,
+                f"({remote_records(whole):g} remote cell records)")
+    checks.close("packed bed, gas whole on rank 0: pressure drop on 2 ranks vs 1 (Pa)",
+                 bed.measured_pressure_drop(whole), dp_one, TOLERANCE)
     checks.finish()
 
 

@@ -37,7 +37,7 @@ def prepared(name, bed, ranks):
     case.set_coupling("output.statistics_interval", 0.01)
     run(["blockMesh"], case.path, "log.blockMesh")
     if ranks > 1:
-        decompose(case.path, (ranks, 1, 1))
+        decompose(case.path, ranks)
     return case
 
 

@@ -15,6 +15,7 @@ from tfdem.case import Case, CaseError, set_yaml_value
 from tfdem.outputs import OutputError, dump_frames, fix_print, joined_series
 from tfdem.packing import packing_settings
 from tfdem.physics import slab_solid_fraction
+from tfdem.run import SPLIT_GAS_FROM_CELLS_PER_RANK, gas_layout, mesh_cell_count, write_whole_gas_dict
 from tfdem.stats import batch_means
 
 failures = []
@@ -121,6 +122,18 @@ def main():
     # Coloured layer: ids 1-4 start below 0.1 m, two of them now above it: 1/2.
     start = {1: 0.02, 2: 0.05, 3: 0.08, 4: 0.09, 5: 0.15}
     check("coloured fraction above the interface", coloured_above(start, [1, 2, 3, 4, 5], [0.2, 0.05, 0.12, 0.01, 0.3], 0.1) == 0.5)
+
+    # Gas layout: a mesh just under the threshold per rank whole, at it split; one rank split.
+    n = SPLIT_GAS_FROM_CELLS_PER_RANK
+    check("gas layouts", (gas_layout(2 * n - 2, 2), gas_layout(2 * n, 2), gas_layout(10, 1)) == ("whole", "split", "split"))
+    # The whole layout's decomposition: every one of the mesh's 6 cells on processor 0
+    write(os.path.join(case_dir, "constant", "polyMesh", "owner"),
+          'FoamFile\n{\n    note "nPoints:24 nCells:6 nFaces:23 nInternalFaces:5";\n}\n')
+    os.makedirs(os.path.join(case_dir, "system"), exist_ok=True)
+    write_whole_gas_dict(case_dir, 2)
+    cells = open(os.path.join(case_dir, "constant", "cellDecomposition")).read().split("(")[-1].split()
+    check("whole gas: 6 cells on processor 0", mesh_cell_count(case_dir) == 6 and cells == ["0"] * 6 + [")"], str(cells))
+    check("whole gas: 2 subdomains, manual", "numberOfSubdomains 2;" in open(os.path.join(case_dir, "system", "decomposeParDict")).read())
 
     print(f"{'FAILED: ' + ', '.join(failures) if failures else 'all passed'}")
     sys.exit(1 if failures else 0)
