@@ -135,16 +135,21 @@ TEST(Drag, LatticeBoltzmannLawsNearlyContinuousAtTheirSwitches) {
   }
 }
 
-// Beetstra by hand (seed 001 eq. 6) at eps_g = 0.6, Re = 50.
-TEST(Drag, BeetstraHandComputedPoint) {
-  const double eg = 0.6, es = 0.4, re = 50.0;
-  const double u = re * kAir.viscosity / (eg * kAir.density * kD);
-  const double a = 180.0 + 18.0 * std::pow(eg, 4) / es * (1.0 + 1.5 * std::sqrt(es));
-  const double b = 0.31 * (1.0 / eg + 3.0 * eg * es + 8.4 * std::pow(re, -0.343)) /
-                   (1.0 + std::pow(10.0, 3.0 * es) * std::pow(re, 2.0 * eg - 2.5));
-  const double f = a * es * es / eg + b * es * re;
-  const double expected = f * kAir.viscosity / (kD * kD);
-  EXPECT_NEAR(beta(Law::Beetstra, {eg, kD, u}, kAir), expected, 1e-12 * expected);
+// Beetstra by hand at eps_g = 0.6, Re = 50 and in a packed bed (eps_g = 0.4, Re = 200) from
+// Beetstra, van der Hoef & Kuipers (2007) in their own normalisation, as MFiX codes it
+// (DRAG_BVK): F = 10 phi/eps^2 + eps^2 (1 + 1.5 sqrt(phi)) + 0.413 Re/(24 eps^2)
+// (1/eps + 3 eps phi + 8.4 Re^-0.343)/(1 + 10^(3 phi) Re^-(1 + 4 phi)/2),
+// beta = 18 mu eps phi F / d^2, Re = eps rho |u - v| d / mu.
+TEST(Drag, BeetstraHandComputedPoints) {
+  for (const auto &[eg, re] : {std::pair{0.6, 50.0}, std::pair{0.4, 200.0}}) {
+    const double phi = 1.0 - eg;
+    const double u = re * kAir.viscosity / (eg * kAir.density * kD);
+    const double f = 10.0 * phi / (eg * eg) + eg * eg * (1.0 + 1.5 * std::sqrt(phi)) +
+                     0.413 * re / (24.0 * eg * eg) * (1.0 / eg + 3.0 * eg * phi + 8.4 * std::pow(re, -0.343)) /
+                         (1.0 + std::pow(10.0, 3.0 * phi) * std::pow(re, -(1.0 + 4.0 * phi) / 2.0));
+    const double expected = 18.0 * kAir.viscosity * eg * f / (kD * kD);  // beta / eps_s
+    EXPECT_NEAR(beta_per_solid_fraction(Law::Beetstra, {eg, kD, u}, kAir), expected, 1e-12 * expected) << eg;
+  }
 }
 
 // Dense packed bed: every Ergun-type law gives beta/eps_s > Stokes (hindered settling).

@@ -152,12 +152,12 @@ TEST(Transfer, AveragedGasSideUsesEquation35MeanVelocity) {
   const double eps = 1.0 - (v1 + v2) / 1e-6;
   const double sauter = (8e-9 + 64e-9) / (4e-6 + 16e-6);
   const double slip = std::hypot(1.0 - vx, 2.0 - vy);
-  // Beetstra et al. (seed 001 eq. 6) written out: beta = mu/d^2 (A eps_s^2/eps_g + B eps_s Re)
+  // Beetstra et al. (2007) written out in their normalisation: beta = 18 mu eps eps_s F / d^2
   const double es = 1.0 - eps, re = eps * kAir.density * slip * sauter / kAir.viscosity;
-  const double a = 180.0 + 18.0 * std::pow(eps, 4) / es * (1.0 + 1.5 * std::sqrt(es));
-  const double bb = 0.31 * (1.0 / eps + 3.0 * eps * es + 8.4 * std::pow(re, -0.343)) /
-                    (1.0 + std::pow(10.0, 3.0 * es) * std::pow(re, 2.0 * eps - 2.5));
-  const double beetstra = kAir.viscosity / (sauter * sauter) * (a * es * es / eps + bb * es * re);
+  const double f = 10.0 * es / (eps * eps) + eps * eps * (1.0 + 1.5 * std::sqrt(es)) +
+                   0.413 * re / (24.0 * eps * eps) * (1.0 / eps + 3.0 * eps * es + 8.4 * std::pow(re, -0.343)) /
+                       (1.0 + std::pow(10.0, 3.0 * es) * std::pow(re, -(1.0 + 4.0 * es) / 2.0));
+  const double beetstra = 18.0 * kAir.viscosity * eps * es * f / (sauter * sauter);
   EXPECT_NEAR(r.cell_exchange_coefficient[0], beetstra, 1e-12 * beetstra);
   // each particle gets the same drag per unit volume
   EXPECT_NEAR(r.particle_drag[0] / v1, r.particle_drag[3] / v2, 1e-9 * std::abs(r.particle_drag[3] / v2));

@@ -43,7 +43,8 @@ enum class Law {
   // is divided by eps_s so that A eps_s^2/eps_g -> 18 eps_s (Stokes) as eps_s -> 0 and A is
   // continuous (178 vs 180) at eps_g = 0.6, as in the original correlation.
   HillKochLadd,
-  // Seed 001 eq. 6 (Beetstra, van der Hoef & Kuipers 2007, monodisperse), Re up to 1000.
+  // Seed 001 eq. 6 (Beetstra, van der Hoef & Kuipers 2007, monodisperse), Re up to 1000, with
+  // the 1/eps_g of the original's inertial term that the seed's print drops (drag.cpp).
   Beetstra,
   // Di Felice (1994): f = C_D rho pi d^2/8 eps_g^2 |u-v|(u-v) eps_g^-chi,
   // C_D = (0.63 + 4.8/sqrt(Re))^2, chi = 3.7 - 0.65 exp(-(1.5 - log10 Re)^2 / 2).
