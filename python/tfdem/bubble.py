@@ -76,10 +76,12 @@ def find_bubble(gas_fraction, dx, dy, threshold=BUBBLE_GAS_FRACTION):
             "x": (columns.mean() + 0.5) * dx, "y": (rows.mean() + 0.5) * dy}
 
 
-def coloured_above(initial_height, ids, heights, interface):
+def coloured_above(initial_height, ids, heights, interface, middle=None):
     """Fraction of the coloured particles (those that started below `interface`: dict id ->
-    initial height) that are above it now (ids and heights of the particles now)."""
+    initial height) that are above `middle` now (default: the interface; ids and heights of
+    the particles now)."""
+    middle = interface if middle is None else middle
     coloured = [h for i, h in zip(ids, heights) if initial_height.get(i, math.inf) < interface]
     if not coloured:
         raise ValueError("no coloured particle (none started below the interface)")
-    return sum(h > interface for h in coloured) / len(coloured)
+    return sum(h > middle for h in coloured) / len(coloured)

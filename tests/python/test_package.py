@@ -122,6 +122,10 @@ def main():
     # Coloured layer: ids 1-4 start below 0.1 m, two of them now above it: 1/2.
     start = {1: 0.02, 2: 0.05, 3: 0.08, 4: 0.09, 5: 0.15}
     check("coloured fraction above the interface", coloured_above(start, [1, 2, 3, 4, 5], [0.2, 0.05, 0.12, 0.01, 0.3], 0.1) == 0.5)
+    # The bed lifted by 0.05 m: two of the four coloured ones are above the old interface,
+    # one above the new middle 0.15 m: 1/4.
+    check("coloured fraction above a moved middle",
+          coloured_above(start, [1, 2, 3, 4, 5], [0.07, 0.10, 0.13, 0.16, 0.3], 0.1, 0.15) == 0.25)
 
     # Gas layout: a mesh just under the threshold per rank whole, at it split; one rank split.
     n = SPLIT_GAS_FROM_CELLS_PER_RANK

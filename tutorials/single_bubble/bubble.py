@@ -81,18 +81,21 @@ def rise_velocity(history, start, end):
 
 
 def mixing(case_path, root=HERE):
-    """(interface height, [(t, coloured fraction above it)]) from the particle files: the lower
-    half of the poured bed (by count) is the coloured layer."""
+    """[(t, coloured fraction above the bed's middle)] from the particle files: the lower half
+    of the poured bed (by count) is the coloured layer, the middle the median particle height
+    at t, so a bubble that lifts the whole bed does not count as mixing: 0 while the layers
+    stay apart, 0.5 once they are mixed."""
     start = Case(root).particles()
-    interface = statistics.median(start["y"])
     initial = dict(zip(start["id"], start["y"]))
+    interface = statistics.median(start["y"])
     out = []
     for path in sorted(os.listdir(os.path.join(case_path, "VTK")),
                        key=lambda n: float(n[len("particles_"):-len(".vtk")])):
         t = float(path[len("particles_"):-len(".vtk")])
         p = outputs.vtk_particles(os.path.join(case_path, "VTK", path))
-        out.append((t, bubble.coloured_above(initial, p["id"], [x[1] for x in p["position"]], interface)))
-    return interface, out
+        heights = [x[1] for x in p["position"]]
+        out.append((t, bubble.coloured_above(initial, p["id"], heights, interface, statistics.median(heights))))
+    return out
 
 
 def report(root=HERE):
@@ -122,9 +125,9 @@ def report(root=HERE):
         u = rise_velocity(history, t_off, t_jet + max(AFTER_INJECTION))
         print(f"  rise velocity after the jet: {u:.2f} m/s" if u is not None else "  rise velocity: too few samples")
         if os.path.isdir(os.path.join(path, "VTK")):
-            interface, mixed = mixing(path, root)
-            print(f"  coloured lower half (below {100 * interface:.1f} cm) above it at {mixed[-1][0]:g} s:"
-                  f" {100 * mixed[-1][1]:.2f} %")
+            mixed = mixing(path, root)
+            print(f"  coloured lower half above the bed's median height at {mixed[-1][0]:g} s:"
+                  f" {100 * mixed[-1][1]:.2f} % (0: layers apart, 50: mixed)")
     if not histories:
         print("no runs yet")
         return
