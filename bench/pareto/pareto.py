@@ -263,7 +263,8 @@ def main(argv=None):
                         "the window and batches scale with it)")
     parser.add_argument("--jobs", type=int, default=1, help="points side by side (default 1)")
     parser.add_argument("--root", default=None, help="folder for runs/ and report/ (default bench/pareto/<sweep name>)")
-    parser.add_argument("--points", default="", help="comma-separated point names (default: all)")
+    parser.add_argument("--points", default="", help="comma-separated point names to run (default: all); the "
+                        "report covers every finished point")
     parser.add_argument("--cost", choices=("wall", "cpu"), default="wall",
                         help="the plots' cost axis: wall time, or the solver's processor time (fairer when other "
                              "work shared the cores)")
@@ -272,10 +273,10 @@ def main(argv=None):
         sweep = load_sweep(args.sweep)
         end_time = args.end_time or sweep["end_time"]
         root = args.root or os.path.join(HERE, os.path.splitext(os.path.basename(args.sweep))[0])
-        points = points_of(sweep, root, [n for n in args.points.split(",") if n])
         if args.command == "run":
+            points = points_of(sweep, root, [n for n in args.points.split(",") if n])
             return 0 if run_batch(points, end_time, args.jobs) else 1
-        report(sweep, points, end_time, os.path.join(root, "report"), args.cost)
+        report(sweep, points_of(sweep, root), end_time, os.path.join(root, "report"), args.cost)
         return 0
     except (SweepError, BatchError, CaseError, RunError) as e:
         print(f"pareto.py: {e}", file=sys.stderr)
