@@ -59,14 +59,6 @@ def start(args, cwd, log_name, ranks=1):
                             stderr=subprocess.STDOUT, start_new_session=True)
 
 
-# A gas mesh with fewer cells per rank than this is solved whole on the first rank while
-# every rank runs its part of the DEM. Split, each part keeps most of the gas step's fixed
-# cost and every pressure iteration waits on the halo exchange: the bubbling bed's gas step
-# (bench/README.md, "Cost against bed size") took 0.63 ms + 3.8 us per cell serial and
-# 2.2 ms + 4.4 us per cell of a part split in two, equal at ~1000 cells, 500 per rank.
-SPLIT_GAS_FROM_CELLS_PER_RANK = 500
-
-
 def mesh_cell_count(case_path):
     """Cells of the case's constant/polyMesh (the note OpenFOAM writes in its owner file)."""
     path = os.path.join(case_path, "constant", "polyMesh", "owner")
@@ -79,12 +71,6 @@ def mesh_cell_count(case_path):
     if not found:
         raise RunError(f"{path}: no 'nCells:' in its header note; decompose it by hand (decomposePar)")
     return int(found.group(1))
-
-
-def gas_layout(cells, ranks):
-    """'whole' (every gas cell on the first rank) or 'split' (`ranks` equal parts in x, as
-    LIGGGHTS' `processors * 1 1` cuts the particles) for a mesh of `cells` cells."""
-    return "whole" if ranks > 1 and cells / ranks < SPLIT_GAS_FROM_CELLS_PER_RANK else "split"
 
 
 def write_decompose_dict(case_path, split):
@@ -109,10 +95,11 @@ def write_whole_gas_dict(case_path, ranks):
                   "coeffs          { dataFile \"cellDecomposition\"; }\n")
 
 
-def decompose(case_path, ranks, layout=None):
-    """Decompose the case's mesh and fields for `ranks` ranks; the layout gas_layout chooses
-    unless given. Returns the layout."""
-    layout = layout or gas_layout(mesh_cell_count(case_path), ranks)
+def decompose(case_path, ranks, layout="split"):
+    """Decompose the case's mesh and fields for `ranks` ranks: the gas split in x in equal
+    parts (as LIGGGHTS' `processors * 1 1` cuts the particles), or `whole` on the first rank
+    (the other ranks run only their part of the DEM; on the 675-cell jet bed no faster than
+    split, bench/README.md). Returns the layout."""
     if layout == "whole":
         write_whole_gas_dict(case_path, ranks)
     elif layout == "split":
@@ -124,13 +111,13 @@ def decompose(case_path, ranks, layout=None):
 
 
 def main(argv=None):
-    """python3 -m tfdem.run decompose CASE RANKS [whole|split]: decompose a case (Allrun scripts)."""
+    """python3 -m tfdem.run decompose CASE RANKS [split|whole]: decompose a case (Allrun scripts)."""
     import sys
     args = sys.argv[1:] if argv is None else argv
     if len(args) not in (3, 4) or args[0] != "decompose" or not args[2].isdigit() or int(args[2]) < 2:
-        sys.exit("usage: python3 -m tfdem.run decompose CASE RANKS(>= 2) [whole|split]")
+        sys.exit("usage: python3 -m tfdem.run decompose CASE RANKS(>= 2) [split|whole]")
     try:
-        layout = decompose(args[1], int(args[2]), args[3] if len(args) == 4 else None)
+        layout = decompose(args[1], int(args[2]), *args[3:])
     except (RunError, ValueError) as e:
         sys.exit(f"tfdem.run: {e}")
     print(f"gas {layout} on {args[2]} ranks")

@@ -3,8 +3,8 @@
 On 2 ranks the gas mesh is split in y (decomposePar, simple 1 2 1) and LIGGGHTS in x
 (`processors 2 1 1`), so particles sit in cells another rank owns; the run must report cell
 records exchanged between ranks. The packed bed runs on 2 ranks a second time with the gas
-whole on the first rank (tfdem.run.decompose's layout for small meshes): every particle of the
-second DEM rank is then in a cell of the other rank. Compared:
+whole on the first rank (tfdem.run.decompose's `whole` layout): every particle of the second
+DEM rank is then in a cell of the other rank. Compared:
   - settling sphere: its velocity every 0.01 s over 0.5 s (it falls from the upper gas
     subdomain into the lower one while staying on one DEM rank), relative to u_t;
   - packed bed at U = 0.6 m/s: the probe pressures below and above the bed, relative to the

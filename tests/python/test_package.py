@@ -15,7 +15,7 @@ from tfdem.case import Case, CaseError, set_yaml_value
 from tfdem.outputs import OutputError, dump_frames, fix_print, joined_series
 from tfdem.packing import packing_settings
 from tfdem.physics import slab_solid_fraction
-from tfdem.run import SPLIT_GAS_FROM_CELLS_PER_RANK, gas_layout, mesh_cell_count, write_whole_gas_dict
+from tfdem.run import mesh_cell_count, write_whole_gas_dict
 from tfdem.stats import batch_means
 
 failures = []
@@ -127,9 +127,6 @@ def main():
     check("coloured fraction above a moved middle",
           coloured_above(start, [1, 2, 3, 4, 5], [0.07, 0.10, 0.13, 0.16, 0.3], 0.1, 0.15) == 0.25)
 
-    # Gas layout: a mesh just under the threshold per rank whole, at it split; one rank split.
-    n = SPLIT_GAS_FROM_CELLS_PER_RANK
-    check("gas layouts", (gas_layout(2 * n - 2, 2), gas_layout(2 * n, 2), gas_layout(10, 1)) == ("whole", "split", "split"))
     # The whole layout's decomposition: every one of the mesh's 6 cells on processor 0
     write(os.path.join(case_dir, "constant", "polyMesh", "owner"),
           'FoamFile\n{\n    note "nPoints:24 nCells:6 nFaces:23 nInternalFaces:5";\n}\n')
