@@ -233,7 +233,11 @@ def fluidized_bed(root, fluidize_time):
     case.set_control(endTime=fluidize_time, writeInterval=fluidize_time)
     print(f"fluidizing the packed bed with TFDEM for {fluidize_time} s ...", flush=True)
     run(["tfdemFoam"], path, "log.tfdemFoam")
-    final = vtk_particles(os.path.join(path, "VTK", f"particles_{fluidize_time:g}.vtk"))
+    vtk = os.path.join(path, "VTK", f"particles_{fluidize_time:g}.vtk")
+    if not os.path.isfile(vtk):
+        raise PeerError(f"{vtk} is missing: the fluidizing run ended without its particle file "
+                        f"(case/coupling.yaml must keep output.particles_vtk on; log: {path}/log.tfdemFoam)")
+    final = vtk_particles(vtk)
     diameter, density = case.particle_properties()
     write_bed_data(out + ".tmp", final["position"], diameter, density)
     os.replace(out + ".tmp", out)

@@ -80,14 +80,18 @@ def rise_velocity(history, start, end):
     return float(numpy.polyfit([t for t, _ in points], [y for _, y in points], 1)[0])
 
 
-def mixing(case_path, root=HERE):
-    """[(t, coloured fraction above the bed's middle)] from the particle files: the lower half
-    of the poured bed (by count) is the coloured layer, the middle the median particle height
-    at t, so a bubble that lifts the whole bed does not count as mixing: 0 while the layers
-    stay apart, 0.5 once they are mixed."""
+def coloured_layer(root=HERE):
+    """({id: initial height}, interface): the lower half of the poured bed (by count) is the
+    coloured layer, below the interface (its median height)."""
     start = Case(root).particles()
-    initial = dict(zip(start["id"], start["y"]))
-    interface = statistics.median(start["y"])
+    return dict(zip(start["id"], start["y"])), statistics.median(start["y"])
+
+
+def mixing(case_path, root=HERE):
+    """[(t, coloured fraction above the bed's middle)] from the particle files: the middle is
+    the median particle height at t, so a bubble that lifts the whole bed does not count as
+    mixing: 0 while the layers stay apart, 0.5 once they are mixed."""
+    initial, interface = coloured_layer(root)
     out = []
     for path in sorted(os.listdir(os.path.join(case_path, "VTK")),
                        key=lambda n: float(n[len("particles_"):-len(".vtk")])):
@@ -150,9 +154,8 @@ def draw_snapshots(root, histories, t_jet, plt):
     """Particles (coloured lower half dark) and the eps_g = 0.8 contour at the Fig. 8 times."""
     case = Case(root)
     grid = case.grid()
-    start = case.particles()
-    interface = statistics.median(start["y"])
-    coloured = {i for i, y in zip(start["id"], start["y"]) if y < interface}
+    initial, interface = coloured_layer(root)
+    coloured = {i for i, y in initial.items() if y < interface}
     fig, axes = plt.subplots(len(histories), len(AFTER_INJECTION), figsize=(3 * len(AFTER_INJECTION), 3.2 * len(histories)),
                              squeeze=False)
     for row, law in enumerate(histories):
