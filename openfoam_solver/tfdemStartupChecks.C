@@ -297,10 +297,12 @@ double contactTime
     double mEff,
     double rEff,
     double impactSpeed,
-    std::string& model
+    std::string& model,
+    double& restitution
 )
 {
     std::ostringstream what;
+    restitution = tfdem::kUnknownRestitution;
     tfdem::DemInstance::LinearContact linear;
     if
     (
@@ -313,6 +315,9 @@ double contactTime
              << (linear.damping >= 0 ? linear.damping : linear.restitution)
              << (linear.damping >= 0 ? " N s/m" : "") << ", m_eff = " << mEff << " kg";
         model = what.str();
+        restitution = linear.damping >= 0
+          ? tfdem::contact::restitution_from_damping(linear.stiffness, linear.damping, mEff)
+          : linear.restitution;
         return linear.damping >= 0
           ? tfdem::contact::contact_time_from_damping(linear.stiffness, linear.damping, mEff)
           : tfdem::contact::contact_time(linear.stiffness, linear.restitution, mEff);
@@ -354,8 +359,9 @@ void contactTimeSteps(const fileName& script, const tfdem::DemInstance& dem, dou
                 continue;
             }
             std::string model;
+            double restitution;
             const double rEff = reduced(smallest[a - 1], smallest[b - 1]);
-            const double tc = contactTime(dem, a, b, mEff, rEff, impactSpeed, model);
+            const double tc = contactTime(dem, a, b, mEff, rEff, impactSpeed, model, restitution);
             if (tc < 0)
             {
                 continue;
@@ -364,12 +370,18 @@ void contactTimeSteps(const fileName& script, const tfdem::DemInstance& dem, dou
             Info<< "TFDEM coupling: contact of atom types " << a << " and " << b << " ("
                 << model.c_str() << "): t_c = " << tc << " s (lightest particles), " << tc/dt
                 << " DEM steps per contact" << endl;
-            const std::string problem = tfdem::dem_step_problem(tc, dt);
+            const std::string problem = tfdem::dem_step_problem(tc, dt, restitution);
             if (!problem.empty())
             {
                 FatalErrorInFunction
                     << script << ": contact of atom types " << a << " and " << b
                     << " (" << model.c_str() << "): " << problem.c_str() << exit(FatalError);
+            }
+            const std::string advice = tfdem::dem_step_advice(tc, dt, restitution);
+            if (!advice.empty())
+            {
+                Info<< "TFDEM coupling: advice: contact of atom types " << a << " and " << b
+                    << ": " << advice.c_str() << endl;
             }
         }
     }

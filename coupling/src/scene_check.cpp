@@ -39,14 +39,12 @@ std::string num(double v) {
 
 void time_step_findings(const Scene &s, SceneReport &r) {
   const SceneNumbers &n = r.numbers;
-  const std::string problem = dem_step_problem(n.contact_time, s.dem_time_step);
+  const std::string problem = dem_step_problem(n.contact_time, s.dem_time_step, n.restitution);
+  const std::string advice = dem_step_advice(n.contact_time, s.dem_time_step, n.restitution);
   if (!problem.empty())
     add(r, Finding::Level::Error, "DEM time step", problem);
-  else if (s.dem_time_step > n.recommended_time_step)
-    add(r, Finding::Level::Advice, "DEM time step",
-        "dt = " + num(s.dem_time_step) + " s resolves a contact with " + num(n.contact_time / s.dem_time_step) +
-            " steps; the speed-against-error sweeps recommend >= " + num(kRecommendedStepsPerContact) +
-            " (dt <= " + num(n.recommended_time_step) + " s; bench/README.md)");
+  else if (!advice.empty())
+    add(r, Finding::Level::Advice, "DEM time step", advice);
   else
     add(r, Finding::Level::Ok, "DEM time step", num(n.contact_time / s.dem_time_step) + " steps per contact");
 }
@@ -93,15 +91,34 @@ void gas_findings(SceneReport &r) {
 
 }  // namespace
 
-std::string dem_step_problem(double contact_time, double dt) {
+double recommended_steps_per_contact(double restitution) {
+  const StepsPerContactAt low = kJetBedStepRule, high = kBubblingBedStepRule;
+  if (restitution < 0.0 || restitution >= high.restitution) return high.steps;
+  if (restitution <= low.restitution) return low.steps;
+  const double w = (restitution - low.restitution) / (high.restitution - low.restitution);
+  return low.steps + w * (high.steps - low.steps);
+}
+
+std::string dem_step_problem(double contact_time, double dt, double restitution) {
   if (std::isinf(contact_time))
     return "the contact is overdamped (eta_n >= 2 sqrt(k_n m_eff), seed 000 eq. 26 has no real t_c): particles "
            "do not rebound and e_n is undefined; lower the damping (seed 001 eq. 27 gives eta_n for a chosen e_n)";
-  if (dt > contact_time / kMinimumStepsPerContact)
+  if (dt > contact_time / kMinimumStepsPerContact) {
+    const double steps = recommended_steps_per_contact(restitution);
     return "DEM step dt = " + num(dt) + " s is above t_c/10 = " + num(contact_time / kMinimumStepsPerContact) +
            " s (t_c = " + num(contact_time) + " s, seed 000 eq. 26): contacts are not resolved; use dt <= t_c/" +
-           num(kRecommendedStepsPerContact) + " = " + num(contact_time / kRecommendedStepsPerContact) + " s";
+           num(steps) + " = " + num(contact_time / steps) + " s";
+  }
   return "";
+}
+
+std::string dem_step_advice(double contact_time, double dt, double restitution) {
+  const double steps = recommended_steps_per_contact(restitution);
+  if (std::isinf(contact_time) || dt <= contact_time / steps) return "";
+  const std::string of = restitution < 0.0 ? "an unknown e_n" : "e_n = " + num(restitution);
+  return "dt = " + num(dt) + " s resolves a contact with " + num(contact_time / dt) +
+         " steps; the speed-against-error sweeps recommend >= " + num(steps) + " for " + of + " (dt <= " +
+         num(contact_time / steps) + " s; bench/README.md)";
 }
 
 bool SceneReport::has_errors() const {
@@ -150,7 +167,8 @@ SceneReport check_scene(const Scene &s) {
   n.terminal_velocity = terminal_velocity(d, s.particle_density, s.gas, s.gravity);
   n.contact_time = contact::contact_time_from_damping(s.normal_stiffness, s.normal_damping, m_eff);
   n.restitution = contact::restitution_from_damping(s.normal_stiffness, s.normal_damping, m_eff);
-  n.recommended_time_step = contact::recommended_time_step(n.contact_time, kRecommendedStepsPerContact);
+  n.recommended_time_step =
+      contact::recommended_time_step(n.contact_time, recommended_steps_per_contact(n.restitution));
   const double eps_s = 1.0 - s.packed_gas_fraction;
   const double slip = n.minimum_fluidization / s.packed_gas_fraction;
   n.dense_drag_time = s.particle_density * eps_s /
@@ -176,7 +194,7 @@ std::string format_report(const SceneReport &r) {
     << "  terminal velocity u_t             " << num(n.terminal_velocity) << " m/s\n"
     << "  contact time t_c (eq. 26)         " << num(n.contact_time) << " s\n"
     << "  restitution e_n (eq. 25)          " << num(n.restitution) << "\n"
-    << "  recommended DEM step t_c/" << num(kRecommendedStepsPerContact) << "       "
+    << "  recommended DEM step t_c/" << num(recommended_steps_per_contact(n.restitution)) << "       "
     << num(n.recommended_time_step) << " s\n"
     << "  drag response time (packed bed)   " << num(n.dense_drag_time) << " s\n"
     << "  coupling time                     " << num(n.coupling_time) << " s\n"

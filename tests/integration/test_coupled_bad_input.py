@@ -133,7 +133,7 @@ DEM = [
     ("particle of diameter 0", dem("diameter 1.0e-4 density 2500", "diameter 0 density 2500"),
      ["has diameter 0 m; every DEM particle needs a positive diameter"]),
     ("DEM step above t_c/10", dem("kn peratomtypepair 1 1e-3", "kn peratomtypepair 1 1e3"),
-     ["contact of atom types 1 and 1", "DEM step dt = 0.0001 s is above t_c/10", "use dt <= t_c/37"]),
+     ["contact of atom types 1 and 1", "DEM step dt = 0.0001 s is above t_c/10", "use dt <= t_c/57"]),  # e_n ~1: the finer end of the rule
     ("overdamped contact", dem("gamman_abs peratomtypepair 1 1e-8", "gamman_abs peratomtypepair 1 1e-3"),
      ["the contact is overdamped", "e_n is undefined"]),
     ("Hertz contact too stiff for the DEM step", hertz, ["Hertz, E* =", "is above t_c/10"]),

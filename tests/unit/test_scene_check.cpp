@@ -71,7 +71,8 @@ TEST(SceneCheck, TerminalVelocityBalancesWeightAndDrag) {
 TEST(SceneCheck, ContactNumbersOfUniformBed) {
   const SceneReport r = check_scene(uniform_bed());
   EXPECT_NEAR(r.numbers.restitution, 0.97, 0.005);
-  EXPECT_NEAR(r.numbers.recommended_time_step, r.numbers.contact_time / 37.0, 1e-18);
+  const double steps = 37.0 + (r.numbers.restitution - 0.86) / (0.97 - 0.86) * (57.0 - 37.0);  // ~57 at e_n ~0.97
+  EXPECT_NEAR(r.numbers.recommended_time_step, r.numbers.contact_time / steps, 1e-18);
   EXPECT_NEAR(r.numbers.cell_to_particle, 4.0, 1e-12);
   EXPECT_TRUE(has_finding(r, Finding::Level::Ok, "DEM time step"));
   EXPECT_TRUE(has_finding(r, Finding::Level::Ok, "void fraction"));
@@ -110,12 +111,33 @@ TEST(SceneCheck, OverdampedContactIsAnError) {
 }
 
 // The step rule: t_c = 1e-3 s allows dt up to 1e-4 s (10 steps), the next step up is refused
-// and the message gives t_c/37 = 2.703e-5 s.
+// and the message gives the recommended step: t_c/37 = 2.703e-5 s at the jet bed's e_n 0.86,
+// t_c/57 = 1.754e-5 s when e_n is not known.
 TEST(SceneCheck, DemStepRuleAtItsLimit) {
-  EXPECT_EQ(dem_step_problem(1e-3, 1e-4), "");
-  const std::string problem = dem_step_problem(1e-3, 1.01e-4);
-  EXPECT_NE(problem.find("above t_c/10 = 0.0001 s"), std::string::npos);
-  EXPECT_NE(problem.find("t_c/37 = 2.703e-05 s"), std::string::npos);
+  EXPECT_EQ(dem_step_problem(1e-3, 1e-4, 0.86), "");
+  EXPECT_NE(dem_step_problem(1e-3, 1.01e-4, 0.86).find("above t_c/10 = 0.0001 s"), std::string::npos);
+  EXPECT_NE(dem_step_problem(1e-3, 1.01e-4, 0.86).find("t_c/37 = 2.703e-05 s"), std::string::npos);
+  EXPECT_NE(dem_step_problem(1e-3, 1.01e-4).find("t_c/57 = 1.754e-05 s"), std::string::npos);
+}
+
+// The rule's anchors are the two measured beds (jet e_n 0.86: 37 steps; bubbling e_n 0.97:
+// 57); halfway between them (e_n 0.915) it asks for 47; outside them the nearer bed's value.
+TEST(SceneCheck, RecommendedStepsPerContactFollowTheMeasuredBeds) {
+  EXPECT_DOUBLE_EQ(recommended_steps_per_contact(0.86), 37.0);
+  EXPECT_DOUBLE_EQ(recommended_steps_per_contact(0.97), 57.0);
+  EXPECT_NEAR(recommended_steps_per_contact(0.915), 47.0, 1e-12);
+  EXPECT_DOUBLE_EQ(recommended_steps_per_contact(0.5), 37.0);
+  EXPECT_DOUBLE_EQ(recommended_steps_per_contact(0.99), 57.0);
+  EXPECT_DOUBLE_EQ(recommended_steps_per_contact(kUnknownRestitution), 57.0);
+}
+
+// 40 steps per contact: enough for the jet bed's restitution, advice for the bubbling bed's.
+TEST(SceneCheck, DemStepAdviceDependsOnRestitution) {
+  EXPECT_EQ(dem_step_advice(1e-3, 1e-3 / 40.0, 0.86), "");
+  const std::string advice = dem_step_advice(1e-3, 1e-3 / 40.0, 0.97);
+  EXPECT_NE(advice.find("recommend >= 57 for e_n = 0.97"), std::string::npos);
+  EXPECT_NE(advice.find("dt <= 1.754e-05 s"), std::string::npos);
+  EXPECT_EQ(dem_step_advice(1e-3, 1e-3 / 60.0, 0.97), "");
 }
 
 TEST(SceneCheck, RejectsNonPositiveInput) {
