@@ -113,7 +113,7 @@ class Point(CaseRun):
         template = Case(self.template)
         case = template.copy_to(self.case.path)
         self.set_status(state="prepared", end_time=end_time)
-        case.set_control(endTime=end_time, writeInterval=min(1.0, end_time), startFrom="startTime",
+        case.set_control(endTime=end_time, writeInterval=self.write_interval(end_time), startFrom="startTime",
                          writePrecision=17)
         self._time_steps(case)
         refine = self.spec.get("refine", [1, 1])
@@ -130,6 +130,9 @@ class Point(CaseRun):
         write_bed_probes(case, self.sweep["field_interval"], self.sweep["statistics_interval"])
         if self.ranks > 1:
             decompose(case.path, self.ranks)
+
+    def write_interval(self, end_time):
+        return min(1.0, end_time)
 
     def _packing(self):
         """The initial packed bed (sweep `packing`: its file and the script that makes it, both

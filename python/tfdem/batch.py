@@ -131,6 +131,17 @@ class CaseRun:
         self.set_status(state="running", resumed_from=resume, pid=proc.pid)
         return proc
 
+    def write_interval(self, end_time):
+        """The checkpoint interval of a run to end_time; None keeps the case's own."""
+        return None
+
+    def extend(self, end_time):
+        """Carry a prepared or started run on to another end time, keeping its checkpoints:
+        its next start resumes from the last one."""
+        interval = self.write_interval(end_time)
+        self.case.set_control(endTime=end_time, **({} if interval is None else {"writeInterval": interval}))
+        self.set_status(state="stopped", end_time=end_time)
+
     def finish(self, code):
         log = self.logs()[-1]
         text = open(log, errors="replace").read()
@@ -185,9 +196,10 @@ def print_progress(active, started):
 
 
 def run_batch(runs, end_time, jobs, poll=2.0, report_every=60.0):
-    """Run the runs, `jobs` at a time, preparing those that are new or were prepared for
-    another end time; True when all finished. Interrupted (Ctrl-C, SIGTERM), it stops its
-    solvers, which resume from their last checkpoint on the next call."""
+    """Run the runs, `jobs` at a time; True when all finished. A new run is prepared; one
+    prepared for another end time is carried on to this one from its last checkpoint (a run
+    already past end_time ends at once). Interrupted (Ctrl-C, SIGTERM), it stops its solvers,
+    which resume from their last checkpoint on the next call."""
     busy = [f"{r.name} (process {r.running_elsewhere()})" for r in runs if r.running_elsewhere()]
     if busy:
         raise BatchError(f"still running from another or a killed batch: {', '.join(busy)}; wait for it, or "
@@ -197,9 +209,12 @@ def run_batch(runs, end_time, jobs, poll=2.0, report_every=60.0):
         if r.done() and status.get("end_time") == end_time:
             print(f"{r.name}: done ({clock(status.get('wall_seconds', 0))} wall), skipped", flush=True)
             continue
-        if status.get("state") == "new" or status.get("end_time") != end_time or not os.path.isdir(r.case.path):
+        if status.get("state") == "new" or not os.path.isdir(r.case.path):
             print(f"{r.name}: preparing {r.case.path}", flush=True)
             r.prepare(end_time)
+        elif status.get("end_time") != end_time:
+            print(f"{r.name}: carried on from {status.get('end_time')} s to {end_time:g} s", flush=True)
+            r.extend(end_time)
     pending = [r for r in runs if not r.done()]
     active = []
     previous = signal.signal(signal.SIGTERM, _interrupt)
@@ -263,14 +278,17 @@ class VariantRun(CaseRun):
             shutil.rmtree(self.case.path)
         self.case = Case(self.root).copy_to(self.case.path, extra=("bed.data",))
         self.set_status(state="prepared", end_time=end_time)
-        interval = float(self.case.control("writeInterval"))
-        self.case.set_control(endTime=end_time, writeInterval=min(interval, end_time), startFrom="startTime")
+        self.case.set_control(endTime=end_time, writeInterval=self.write_interval(end_time), startFrom="startTime")
         for key, value in self.settings.items():
             self.case.set_coupling(key, value)
         tfdem.run.run(["blockMesh"], self.case.path, "log.blockMesh")
         self.prepare_mesh()
         if self.ranks > 1:
             tfdem.run.decompose(self.case.path, self.ranks)
+
+    def write_interval(self, end_time):
+        """The tutorial's checkpoint interval, or end_time when shorter."""
+        return min(float(Case(self.root).control("writeInterval")), end_time)
 
     def prepare_mesh(self):
         """Steps between blockMesh and the decomposition (none here)."""

@@ -1,9 +1,12 @@
 """Goldschmidt's bidisperse bed (tutorials/bidisperse_segregation), short: its own files with
 a tenth of the particles (packing.yaml count / 10, a bed ~1.5 cm deep instead of ~15 cm) poured
-mixed, then 0.1 s under the polydisperse drag on 2 ranks through the tutorial's driver.
+mixed, then 0.1 s under the polydisperse drag on 2 ranks through the tutorial's driver: first
+to 0.06 s, then carried on to 0.1 s from its 0.06 s checkpoint, as a long run is extended.
 
 - The pour: every particle inserted; the small size's share of the mass as packing.yaml asks
   (within the sampling error of drawing sizes at random by mass, 3 binomial sigmas).
+- The extension resumes from the checkpoint (a second solver segment that says so), not
+  afresh.
 - The run ends, conserves the particles, and its particle statistics carry the degree of
   segregation (seed 001 eq. 49) at 0.1 s: a poured mixture starts mixed, |s| < 0.15 (a
   random pour of equal volumes of the two sizes gives |s| of order 0.02; a bed segregated by
@@ -40,8 +43,12 @@ def main():
     checks.within("small size's mass fraction", fraction, expected, 3 * sigma)
 
     runs = [segregation.segregation_run("polydisperse", 2, root=root)]
-    ok = run_batch(runs, 0.1, 1)
-    checks.true("run finished", ok)
+    checks.true("run to 0.06 s finished", run_batch(runs, 0.06, 1))
+    checks.true("carried on to 0.1 s", run_batch(runs, 0.1, 1))
+    logs = runs[0].logs()
+    checks.true("two solver segments", len(logs) == 2, f"({logs})")
+    checks.true("the second resumed from the 0.06 s checkpoint",
+                "resuming gas and particles from t = 0.06 s" in open(logs[-1]).read())
     stats = particle_statistics(runs[0].case.path)
     checks.true("particles conserved", stats["particles"] and all(n == count for n in stats["particles"]),
                 f"({stats['particles']})")

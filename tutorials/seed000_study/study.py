@@ -83,9 +83,8 @@ class Run(CaseRun):
             shutil.rmtree(self.case.path)
         Case(self.template).copy_to(self.case.path, extra=("Allprepare", "Allsolve", "0.orig"))
         self.set_status(state="prepared", end_time=end_time)
-        study = self.study
-        self.case.set_control(endTime=end_time, writeInterval=study["write_interval"] * self._scale(end_time),
-                              startFrom="startTime", writePrecision=17)
+        self.case.set_control(endTime=end_time, writeInterval=self.write_interval(end_time), startFrom="startTime",
+                              writePrecision=17)
         refine = self.spec.get("refine_y", 1)
         if self.tfm:
             self._prepare_tfm(refine)
@@ -132,6 +131,9 @@ class Run(CaseRun):
         if not os.path.isfile(data):
             run(["./Allrun"], os.path.join(TUTORIALS, "bubbling_bed_packing"), "log.Allrun")
         return data
+
+    def write_interval(self, end_time):
+        return self.study["write_interval"] * self._scale(end_time)
 
     def _scale(self, end_time):
         """A shortened run writes checkpoints and particle files as often, relative to its
