@@ -137,10 +137,12 @@ class CaseRun:
 
     def extend(self, end_time):
         """Carry a prepared or started run on to another end time, keeping its checkpoints:
-        its next start resumes from the last one."""
+        its next start resumes from the last one; a run whose last checkpoint is at or past
+        end_time is done."""
         interval = self.write_interval(end_time)
         self.case.set_control(endTime=end_time, **({} if interval is None else {"writeInterval": interval}))
-        self.set_status(state="stopped", end_time=end_time)
+        resume = self.resume_point()
+        self.set_status(state="done" if resume and float(resume) >= end_time else "stopped", end_time=end_time)
 
     def finish(self, code):
         log = self.logs()[-1]
@@ -197,9 +199,9 @@ def print_progress(active, started):
 
 def run_batch(runs, end_time, jobs, poll=2.0, report_every=60.0):
     """Run the runs, `jobs` at a time; True when all finished. A new run is prepared; one
-    prepared for another end time is carried on to this one from its last checkpoint (a run
-    already past end_time ends at once). Interrupted (Ctrl-C, SIGTERM), it stops its solvers,
-    which resume from their last checkpoint on the next call."""
+    prepared for another end time is carried on to this one from its last checkpoint (one
+    with a checkpoint at or past end_time is done). Interrupted (Ctrl-C, SIGTERM), it stops
+    its solvers, which resume from their last checkpoint on the next call."""
     busy = [f"{r.name} (process {r.running_elsewhere()})" for r in runs if r.running_elsewhere()]
     if busy:
         raise BatchError(f"still running from another or a killed batch: {', '.join(busy)}; wait for it, or "

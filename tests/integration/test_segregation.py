@@ -6,7 +6,7 @@ to 0.06 s, then carried on to 0.1 s from its 0.06 s checkpoint, as a long run is
 - The pour: every particle inserted; the small size's share of the mass as packing.yaml asks
   (within the sampling error of drawing sizes at random by mass, 3 binomial sigmas).
 - The extension resumes from the checkpoint (a second solver segment that says so), not
-  afresh.
+  afresh; asked for the earlier end time again, the run is done without a solver.
 - The run ends, conserves the particles, and its particle statistics carry the degree of
   segregation (seed 001 eq. 49) at 0.1 s: a poured mixture starts mixed, |s| < 0.15 (a
   random pour of equal volumes of the two sizes gives |s| of order 0.02; a bed segregated by
@@ -49,6 +49,8 @@ def main():
     checks.true("two solver segments", len(logs) == 2, f"({logs})")
     checks.true("the second resumed from the 0.06 s checkpoint",
                 "resuming gas and particles from t = 0.06 s" in open(logs[-1]).read())
+    checks.true("asked for 0.06 s again, the run past it is done without a solver",
+                run_batch(runs, 0.06, 1) and runs[0].done() and len(runs[0].logs()) == 2)
     stats = particle_statistics(runs[0].case.path)
     checks.true("particles conserved", stats["particles"] and all(n == count for n in stats["particles"]),
                 f"({stats['particles']})")
