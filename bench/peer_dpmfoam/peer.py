@@ -387,6 +387,7 @@ def plot(codes, weight, path):
     for code, label in (("tfdem", "TFDEM"), ("dpmfoam", "DPMFoam")):
         ax.plot(codes[code]["t"], codes[code]["dp"], label=label, lw=0.8)
     ax.axhline(weight, color="k", ls="--", lw=0.8, label="bed weight / area")
+    ax.set_ylim(0, 3 * weight)  # the gas start's first-step spike (DPMFoam ~20 weights) off the scale
     ax.set_xlabel("t (s)")
     ax.set_ylabel("Δp bottom - top (Pa)")
     ax.legend(fontsize=8)
