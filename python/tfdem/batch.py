@@ -312,6 +312,8 @@ def variants_command_line(doc, root, variants, make_run, report, default_end_tim
     sub.add_parser("report")
     args = parser.parse_args(argv)
     if args.action == "run":
+        if not args.end_time > 0:
+            parser.error(f"--end-time must be a positive number of seconds, got {args.end_time:g}")
         if not os.path.exists(os.path.join(root, "bed.data")):
             print("pouring the bed (tfdem.packing, packing.yaml)", flush=True)
             print(pour_case(root), flush=True)

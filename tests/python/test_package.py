@@ -10,6 +10,7 @@ import tempfile
 
 import numpy
 
+from tfdem.batch import variants_command_line
 from tfdem.bubble import coloured_above, find_bubble
 from tfdem.case import Case, CaseError, set_yaml_value
 from tfdem.outputs import OutputError, dump_frames, fix_print, joined_series
@@ -135,6 +136,14 @@ def main():
     cells = open(os.path.join(case_dir, "constant", "cellDecomposition")).read().split("(")[-1].split()
     check("whole gas: 6 cells on processor 0", mesh_cell_count(case_dir) == 6 and cells == ["0"] * 6 + [")"], str(cells))
     check("whole gas: 2 subdomains, manual", "numberOfSubdomains 2;" in open(os.path.join(case_dir, "system", "decomposeParDict")).read())
+
+    # A batch driver refuses an end time that is not positive (argparse's exit code 2)
+    try:
+        variants_command_line("doc", case_dir, {"a": {}}, None, None, 1.0, ["run", "--end-time", "0"])
+        code = None
+    except SystemExit as stop:
+        code = stop.code
+    check("batch driver refuses --end-time 0", code == 2, str(code))
 
     print(f"{'FAILED: ' + ', '.join(failures) if failures else 'all passed'}")
     sys.exit(1 if failures else 0)

@@ -6,8 +6,9 @@
 `run` pours the mixed bed once (bed.data, tfdem.packing from packing.yaml) and runs each law
 in runs/<law>/ from it, `jobs` runs at a time on `ranks` ranks each; a run that was stopped
 resumes from its last checkpoint (every write interval) when run again, a finished one is
-skipped, and one run before to an earlier end time carries on from its last checkpoint. `report` prints the degree of segregation s(t) (the coupler's particle statistics,
-every 0.1 s) at the times the runs reached, beside the seed's, and draws segregation.png.
+skipped, and one given a later end time carries on from its last checkpoint. `report` prints
+the degree of segregation s(t) (the coupler's particle statistics, every 0.1 s) at the times
+the runs reached, beside the seed's, and draws segregation.png.
 
 The laws (coupling.yaml gives the polydisperse one):
 - polydisperse: Beetstra et al.'s (2007) monodisperse law (seed 001 eq. 6) at the local Sauter
