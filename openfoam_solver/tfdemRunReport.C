@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "tfdem/distributed_coupling.h"
+#include "tfdem/scene_check.h"
 
 Foam::TfdemRunReport::TfdemRunReport(const Time& runTime)
 :
@@ -94,11 +95,11 @@ void Foam::TfdemRunReport::courant(scalar courantNumber)
     }
     Info<< "TFDEM gas Courant number: largest " << largestCourant_ << " since the last write"
         << endl;
-    if (largestCourant_ > 1)
+    const std::string problem =
+        tfdem::gas_step_problem(largestCourant_, runTime_.deltaTValue());
+    if (!problem.empty())
     {
-        Info<< "TFDEM warning: the gas Courant number reached " << largestCourant_
-            << " (> 1): the gas step " << runTime_.deltaTValue() << " s is too long for the"
-            << " flow; shorten it (fewer dem.coupling_interval steps, deltaT to match)" << endl;
+        Info<< "TFDEM warning: " << problem.c_str() << endl;
     }
     largestCourant_ = 0;
 }

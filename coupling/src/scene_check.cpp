@@ -121,6 +121,15 @@ std::string dem_step_advice(double contact_time, double dt, double restitution) 
          num(contact_time / steps) + " s; bench/README.md)";
 }
 
+std::string gas_step_problem(double courant, double gas_step) {
+  if (courant <= kLargestMeasuredCourantNumber) return "";
+  return "the gas Courant number reached " + num(courant) + " (> " + num(kLargestMeasuredCourantNumber) +
+         ", the largest the speed-against-error sweeps measured within noise; bench/README.md): the gas step " +
+         num(gas_step) + " s is too long for the flow; use <= " +
+         num(gas_step * kLargestMeasuredCourantNumber / courant) +
+         " s (fewer dem.coupling_interval steps, deltaT to match)";
+}
+
 bool SceneReport::has_errors() const {
   for (const auto &f : findings)
     if (f.level == Finding::Level::Error) return true;

@@ -140,6 +140,16 @@ TEST(SceneCheck, DemStepAdviceDependsOnRestitution) {
   EXPECT_EQ(dem_step_advice(1e-3, 1e-3 / 60.0, 0.97), "");
 }
 
+// The measured bound 3.2: within it nothing; at Courant 4 with a 1 ms step the largest step
+// the rule allows is 1 ms x 3.2 / 4 = 0.8 ms.
+TEST(SceneCheck, GasStepProblemAboveTheMeasuredCourantNumber) {
+  EXPECT_EQ(gas_step_problem(0.5, 1e-3), "");
+  EXPECT_EQ(gas_step_problem(3.2, 1e-3), "");
+  const std::string problem = gas_step_problem(4.0, 1e-3);
+  EXPECT_NE(problem.find("the gas Courant number reached 4 (> 3.2"), std::string::npos);
+  EXPECT_NE(problem.find("use <= 0.0008 s"), std::string::npos);
+}
+
 TEST(SceneCheck, RejectsNonPositiveInput) {
   Scene s = uniform_bed();
   s.particle_diameter = -1.0;
