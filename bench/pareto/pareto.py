@@ -22,7 +22,6 @@ import argparse
 import csv
 import difflib
 import os
-import re
 import shutil
 import sys
 
@@ -145,22 +144,11 @@ class Point(CaseRun):
         return path
 
     def _time_steps(self, case):
-        """DEM step and gas step of the point; the coupling interval is their ratio, which must
-        be a whole number."""
-        dem = float(self.spec.get("dem_time_step", case.dem_time_step()))
-        gas = float(self.spec.get("gas_time_step", case.delta_t()))
-        interval = gas / dem
-        if abs(interval - round(interval)) > 1e-6 * interval or round(interval) < 1:
-            raise SweepError(f"point {self.name}: gas_time_step {gas:g} s is not a whole number of "
-                             f"dem_time_step {dem:g} s ({interval:.6g}); choose steps whose ratio is whole")
-        script = case.dem_script()
-        text = open(script).read()
-        text, n = re.subn(r"(?m)^timestep\s+\S+", f"timestep        {dem:.12g}", text)
-        if n != 1:
-            raise SweepError(f"{script}: expected one 'timestep' command, found {n}")
-        open(script, "w").write(text)
-        case.set_coupling("dem.coupling_interval", int(round(interval)))
-        case.set_control(deltaT=f"{gas:.12g}")
+        """DEM step and gas step of the point (tfdem.case.Case.set_time_steps)."""
+        try:
+            case.set_time_steps(self.spec.get("dem_time_step"), self.spec.get("gas_time_step"))
+        except CaseError as e:
+            raise SweepError(f"point {self.name}: {e}") from None
 
 
 def points_of(sweep, root, names=()):

@@ -415,6 +415,25 @@ class Case:
     def dem_time_step(self):
         return float(self.dem_command("timestep")[1])
 
+    def set_time_steps(self, dem=None, gas=None):
+        """DEM step (the DEM script's `timestep`) and gas step (controlDict deltaT), each kept
+        when None; the coupling interval (dem.coupling_interval) is their ratio, which must be
+        a whole number."""
+        dem = self.dem_time_step() if dem is None else float(dem)
+        gas = self.delta_t() if gas is None else float(gas)
+        interval = gas / dem
+        if abs(interval - round(interval)) > 1e-6 * interval or round(interval) < 1:
+            raise CaseError(f"{self.path}: gas step {gas:g} s is not a whole number of DEM steps {dem:g} s "
+                            f"({interval:.6g}); choose steps whose ratio is whole")
+        script = self.dem_script()
+        text, n = re.subn(r"(?m)^timestep\s+\S+", f"timestep        {dem:.12g}", _read(script))
+        if n != 1:
+            raise CaseError(f"{script}: expected one 'timestep' command, found {n}")
+        with open(script, "w") as out:
+            out.write(text)
+        self.set_coupling("dem.coupling_interval", int(round(interval)))
+        self.set_control(deltaT=f"{gas:.12g}")
+
     def particles(self, data_file=None):
         """Particles of the DEM script's read_data file (atom style granular): dict of lists
         id, type, diameter, density, x, y, z."""

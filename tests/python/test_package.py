@@ -73,6 +73,22 @@ def main():
           and case.coupling_value("dem.coupling_interval") == 10, text)
     check("yaml edited: comments kept", "# a case" in text and "# the DEM" in text)
 
+    # Time steps: DEM 2e-5 s and gas 5e-4 s give 25 DEM steps per gas step; 3e-5 s is 1.5 steps
+    write(case.file("in.bed"), "units si\ntimestep        1e-5\nrun 0\n")
+    write(case.file("system", "controlDict"), "FoamFile { version 2.0; }\ndeltaT          1e-4;\nendTime 1;\n")
+    case.set_time_steps(dem=2e-5, gas=5e-4)
+    check("time steps set: DEM step, gas step, interval 25",
+          case.dem_time_step() == 2e-5 and case.delta_t() == 5e-4 and case.coupling_value("dem.coupling_interval") == 25,
+          f"{case.dem_time_step()} {case.delta_t()} {case.coupling_value('dem.coupling_interval')}")
+    case.set_time_steps(gas=1e-3)
+    check("gas step alone: DEM step kept, interval 50",
+          case.dem_time_step() == 2e-5 and case.coupling_value("dem.coupling_interval") == 50)
+    try:
+        case.set_time_steps(gas=3e-5)
+        check("a gas step that is not a whole number of DEM steps is refused", False)
+    except CaseError as e:
+        check("a gas step that is not a whole number of DEM steps is refused", "(1.5)" in str(e), str(e))
+
     # Batch means of a square wave of period 1 s sampled at 0.01 s: batches of 1 s hold one
     # period each, so every batch mean is the wave's mean 0.5 and the error is 0.
     t = [k * 0.01 for k in range(1000)]

@@ -96,6 +96,8 @@ class Run(CaseRun):
         case = self.case
         if refine != 1:
             case.scale_cells(1, refine)
+            # the same Courant number on the finer cells (the gas step rule, scene_check.h)
+            case.set_time_steps(gas=case.delta_t() / refine)
         for key, value in self.spec.get("coupling", {}).items():
             case.set_coupling(key, value)
         case.set_coupling("output.statistics_interval", self.study["statistics_interval"])
