@@ -53,8 +53,7 @@ def dem_step():
 
 def set_interval(case, interval):
     """coupling_interval and the gas step (interval x the DEM step) of the case."""
-    case.set_coupling("dem.coupling_interval", interval)
-    case.set_control(deltaT=f"{interval * case.dem_time_step():.12g}")
+    case.set_time_steps(gas=interval * case.dem_time_step())
 
 
 def prepare(path, end_time, ranks, interval):
