@@ -421,6 +421,8 @@ class Case:
         a whole number."""
         dem = self.dem_time_step() if dem is None else float(dem)
         gas = self.delta_t() if gas is None else float(gas)
+        if not (dem > 0 and gas > 0):
+            raise CaseError(f"{self.path}: DEM step {dem:g} s and gas step {gas:g} s must both be positive")
         interval = gas / dem
         if abs(interval - round(interval)) > 1e-6 * interval or round(interval) < 1:
             raise CaseError(f"{self.path}: gas step {gas:g} s is not a whole number of DEM steps {dem:g} s "

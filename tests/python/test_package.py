@@ -88,6 +88,11 @@ def main():
         check("a gas step that is not a whole number of DEM steps is refused", False)
     except CaseError as e:
         check("a gas step that is not a whole number of DEM steps is refused", "(1.5)" in str(e), str(e))
+    try:
+        case.set_time_steps(dem=0)
+        check("a DEM step of 0 is refused", False)
+    except CaseError as e:
+        check("a DEM step of 0 is refused", "must both be positive" in str(e), str(e))
 
     # Batch means of a square wave of period 1 s sampled at 0.01 s: batches of 1 s hold one
     # period each, so every batch mean is the wave's mean 0.5 and the error is 0.
