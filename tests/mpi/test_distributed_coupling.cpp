@@ -1,7 +1,7 @@
 // The core across MPI ranks (cell_exchange, distributed_coupling): run at 1 and 2 ranks, it
 // must give what the serial core gives for all particles on one rank, with particles split
 // between ranks one way (by x) and cells the other way (by y), so most particles sit in cells
-// another rank owns.
+// another rank owns; or with every cell on every rank (the gas solved whole on each rank).
 #include <gtest/gtest.h>
 #include <mpi.h>
 
@@ -65,6 +65,55 @@ TEST(CellExchange, SumsAtOwnersAndFetchesBack) {
   for (std::size_t h = 0; h < halo.size(); ++h) EXPECT_EQ(fetched[h], 0.5 * halo[h]);
 }
 
+// Every rank holds every cell (in reversed local order): each rank gets the sum over all
+// ranks' halos, the same bits on every rank, and fetching returns its own values.
+TEST(CellExchange, EveryRankHoldsTheSumsOfEveryCell) {
+  const int cells = 50;
+  std::vector<int> owner(cells, CellExchange::kEveryRank), owned;
+  for (int g = cells - 1; g >= 0; --g) owned.push_back(g);
+  CellExchange exchange(MPI_COMM_WORLD, owner, owned);
+  std::vector<int> halo;
+  for (int g = cells - 1 - rank(); g >= 0; g -= 3) halo.push_back(g);
+  exchange.set_halo(halo);
+  EXPECT_EQ(exchange.remote_records(), 0u);
+  std::vector<double> values;
+  for (int g : halo) values.insert(values.end(), {0.1 * g, 1000.0 + rank()});
+  std::vector<double> sums;
+  exchange.sum_to_owners(values, 2, sums);
+  ASSERT_EQ(sums.size(), 2u * cells);
+  for (std::size_t l = 0; l < owned.size(); ++l) {
+    const int g = owned[l];
+    double expected_first = 0.0, expected_second = 0.0;
+    for (int r = 0; r < ranks(); ++r)
+      if ((cells - 1 - r - g) % 3 == 0 && g <= cells - 1 - r) {
+        expected_first += 0.1 * g;
+        expected_second += 1000.0 + r;
+      }
+    EXPECT_NEAR(sums[2 * l], expected_first, 1e-13) << "cell " << g;
+    EXPECT_EQ(sums[2 * l + 1], expected_second) << "cell " << g;
+  }
+  std::vector<double> first_rank = sums;
+  MPI_Bcast(first_rank.data(), static_cast<int>(first_rank.size()), MPI_DOUBLE, 0, MPI_COMM_WORLD);
+  for (std::size_t k = 0; k < sums.size(); ++k) EXPECT_EQ(sums[k], first_rank[k]) << "value " << k;
+  std::vector<double> owned_values;
+  for (int g : owned) owned_values.push_back(0.5 * g + rank());
+  std::vector<double> fetched;
+  exchange.fetch_from_owners(owned_values, 1, fetched);
+  ASSERT_EQ(fetched.size(), halo.size());
+  for (std::size_t h = 0; h < halo.size(); ++h) EXPECT_EQ(fetched[h], 0.5 * halo[h] + rank());
+}
+
+TEST(CellExchange, RefusesAMixedOrIncompleteOwnerTable) {
+  std::vector<int> mixed(10, CellExchange::kEveryRank);
+  mixed[3] = 0;
+  std::vector<int> all(10);
+  for (int g = 0; g < 10; ++g) all[g] = g;
+  EXPECT_THROW(CellExchange(MPI_COMM_WORLD, mixed, all), std::invalid_argument);
+  const std::vector<int> every(10, CellExchange::kEveryRank);
+  EXPECT_THROW(CellExchange(MPI_COMM_WORLD, every, {0, 1, 2}), std::invalid_argument);
+  EXPECT_THROW(CellExchange(MPI_COMM_WORLD, every, {0, 1, 2, 3, 4, 5, 6, 7, 8, 8}), std::invalid_argument);
+}
+
 // A 2-D bed of 6 x 8 cells (1 cm, depth 2.5 mm), particles on a jittered lattice with random
 // velocities and diameters 2.25-2.75 mm, some overlapping the walls; a smooth gas field.
 struct Bed {
@@ -97,6 +146,7 @@ struct Case {
   TransferMethod transfer;
   GasAtParticle gas_velocity = GasAtParticle::Cell;
   drag::Polydispersity polydispersity = drag::Polydispersity::OwnDiameter;
+  bool gas_whole_on_every_rank = false;
 };
 
 class DistributedCouplingTest : public ::testing::TestWithParam<Case> {};
@@ -135,13 +185,16 @@ TEST_P(DistributedCouplingTest, EqualsSerialCore) {
   to.law = drag::Law::ErgunWenYu;
   const Reference ref = serial(b, vf, to);
 
-  // Cells to ranks by row (y), particles to ranks by column (x).
+  // Cells to ranks by row (y), or every cell on every rank in reversed order; particles to
+  // ranks by column (x).
   const int n = b.grid.cell_count();
+  const bool whole = GetParam().gas_whole_on_every_rank;
   std::vector<int> owner(n), owned;
   std::vector<double> volume, velocity, gradient;
-  for (int g = 0; g < n; ++g) {
-    owner[g] = (g / b.grid.count[0]) * ranks() / b.grid.count[1];
-    if (owner[g] != rank()) continue;
+  for (int k = 0; k < n; ++k) {
+    const int g = whole ? n - 1 - k : k;
+    owner[g] = whole ? CellExchange::kEveryRank : (g / b.grid.count[0]) * ranks() / b.grid.count[1];
+    if (!whole && owner[g] != rank()) continue;
     owned.push_back(g);
     volume.push_back(b.cell_volume[g]);
     for (int a = 0; a < 3; ++a) {
@@ -167,7 +220,7 @@ TEST_P(DistributedCouplingTest, EqualsSerialCore) {
   DistributedCoupling coupling(MPI_COMM_WORLD, b.grid, owner, owned, volume, vf, to);
   coupling.map(mine.view());
   coupling.forces(mine.view(), velocity.data(), gradient.data());
-  if (ranks() > 1) EXPECT_GT(coupling.exchange().remote_records(), 0u) << "no particle in another rank's cell";
+  if (ranks() > 1 && !whole) EXPECT_GT(coupling.exchange().remote_records(), 0u) << "no particle in another rank's cell";
 
   const double eps_tolerance = 1e-13, force_tolerance = 1e-12;  // round-off of reordered sums
   for (std::size_t l = 0; l < owned.size(); ++l) {
@@ -207,7 +260,13 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{VoidFractionMethod::PorousCube, TransferMethod::PerParticleConservative,
                            GasAtParticle::Interpolated},
                       Case{VoidFractionMethod::Divided, TransferMethod::PerParticleConservative, GasAtParticle::Cell,
-                           drag::Polydispersity::Beetstra2007}));
+                           drag::Polydispersity::Beetstra2007},
+                      Case{VoidFractionMethod::Centroid, TransferMethod::Averaged, GasAtParticle::Cell,
+                           drag::Polydispersity::OwnDiameter, true},
+                      Case{VoidFractionMethod::PorousCube, TransferMethod::PerParticle, GasAtParticle::Interpolated,
+                           drag::Polydispersity::OwnDiameter, true},
+                      Case{VoidFractionMethod::Divided, TransferMethod::PerParticleConservative, GasAtParticle::Cell,
+                           drag::Polydispersity::OwnDiameter, true}));
 
 // Under the 2-D rule the fluid force has no z component even where the gas data have one
 // (round-off of a 2-D gas solution); in 3-D the z component is kept.

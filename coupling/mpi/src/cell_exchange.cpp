@@ -22,19 +22,36 @@ std::vector<int> displacements(const std::vector<int> &counts, int components, s
 
 }  // namespace
 
+bool CellExchange::replicated_table(const std::vector<int> &owner_of_cell) {
+  const auto every = std::count(owner_of_cell.begin(), owner_of_cell.end(), kEveryRank);
+  if (every > 0 && static_cast<std::size_t>(every) < owner_of_cell.size())
+    throw std::invalid_argument("CellExchange: the owner table gives " + std::to_string(every) + " of " +
+                                std::to_string(owner_of_cell.size()) +
+                                " cells to every rank; either all cells are on every rank or each on one");
+  return every > 0;
+}
+
 CellExchange::CellExchange(MPI_Comm comm, std::vector<int> owner_of_cell, const std::vector<int> &owned_cells)
-    : owner_of_cell_(std::move(owner_of_cell)), owned_count_(owned_cells.size()) {
+    : owner_of_cell_(std::move(owner_of_cell)),
+      owned_count_(owned_cells.size()),
+      replicated_(replicated_table(owner_of_cell_)) {
   MPI_Comm_dup(comm, &comm_);
   MPI_Comm_rank(comm_, &rank_);
   MPI_Comm_size(comm_, &size_);
   local_of_cell_.assign(owner_of_cell_.size(), -1);
+  const int mine = replicated_ ? kEveryRank : rank_;
   for (std::size_t l = 0; l < owned_cells.size(); ++l) {
     const int g = owned_cells[l];
-    if (g < 0 || static_cast<std::size_t>(g) >= owner_of_cell_.size() || owner_of_cell_[g] != rank_)
+    if (g < 0 || static_cast<std::size_t>(g) >= owner_of_cell_.size() || owner_of_cell_[g] != mine ||
+        local_of_cell_[g] >= 0)
       throw std::invalid_argument("CellExchange: rank " + std::to_string(rank_) + " lists cell " +
-                                  std::to_string(g) + " that the owner table does not give it");
+                                  std::to_string(g) + " that the owner table does not give it (or twice)");
     local_of_cell_[g] = static_cast<int>(l);
   }
+  if (replicated_ && owned_count_ != owner_of_cell_.size())
+    throw std::invalid_argument("CellExchange: every rank holds every cell, but rank " + std::to_string(rank_) +
+                                " lists " + std::to_string(owned_count_) + " of " +
+                                std::to_string(owner_of_cell_.size()));
   send_counts_.assign(size_, 0);
   receive_counts_.assign(size_, 0);
 }
@@ -47,12 +64,16 @@ CellExchange::~CellExchange() {
 
 void CellExchange::set_halo(const std::vector<int> &halo_cells) {
   halo_size_ = halo_cells.size();
-  std::fill(send_counts_.begin(), send_counts_.end(), 0);
-  for (int g : halo_cells) {
+  for (int g : halo_cells)
     if (g < 0 || static_cast<std::size_t>(g) >= owner_of_cell_.size())
       throw std::out_of_range("CellExchange: halo cell " + std::to_string(g) + " is not a grid cell");
-    ++send_counts_[owner_of_cell_[g]];
+  if (replicated_) {
+    halo_cells_ = halo_cells;
+    remote_records_ = 0;
+    return;
   }
+  std::fill(send_counts_.begin(), send_counts_.end(), 0);
+  for (int g : halo_cells) ++send_counts_[owner_of_cell_[g]];
   std::vector<int> next(size_, 0);
   for (int r = 1; r < size_; ++r) next[r] = next[r - 1] + send_counts_[r - 1];
   send_order_.resize(halo_cells.size());
@@ -87,6 +108,10 @@ void CellExchange::sum_to_owners(const std::vector<double> &halo_values, int com
                                  std::vector<double> &owned_values) {
   if (halo_values.size() != halo_size_ * components)
     throw std::invalid_argument("CellExchange::sum_to_owners: halo values are not for the halo of set_halo");
+  if (replicated_) {
+    sum_on_every_rank(halo_values, components, owned_values);
+    return;
+  }
   send_buffer_.resize(halo_values.size());
   for (std::size_t k = 0; k < send_order_.size(); ++k)
     for (int a = 0; a < components; ++a) send_buffer_[components * k + a] = halo_values[components * send_order_[k] + a];
@@ -101,6 +126,13 @@ void CellExchange::fetch_from_owners(const std::vector<double> &owned_values, in
                                      std::vector<double> &halo_values) {
   if (owned_values.size() != owned_count_ * components)
     throw std::invalid_argument("CellExchange::fetch_from_owners: owned values are not one record per owned cell");
+  if (replicated_) {
+    halo_values.resize(halo_size_ * components);
+    for (std::size_t h = 0; h < halo_size_; ++h)
+      for (int a = 0; a < components; ++a)
+        halo_values[components * h + a] = owned_values[components * local_of_cell_[halo_cells_[h]] + a];
+    return;
+  }
   receive_buffer_.resize(received_local_.size() * components);
   for (std::size_t k = 0; k < received_local_.size(); ++k)
     for (int a = 0; a < components; ++a)
@@ -109,6 +141,22 @@ void CellExchange::fetch_from_owners(const std::vector<double> &owned_values, in
   halo_values.resize(halo_size_ * components);
   for (std::size_t k = 0; k < send_order_.size(); ++k)
     for (int a = 0; a < components; ++a) halo_values[components * send_order_[k] + a] = send_buffer_[components * k + a];
+}
+
+void CellExchange::sum_on_every_rank(const std::vector<double> &halo_values, int components,
+                                     std::vector<double> &owned_values) {
+  const std::size_t values = owner_of_cell_.size() * components;
+  send_buffer_.assign(values, 0.0);
+  for (std::size_t h = 0; h < halo_size_; ++h)
+    for (int a = 0; a < components; ++a)
+      send_buffer_[components * halo_cells_[h] + a] += halo_values[components * h + a];
+  receive_buffer_.resize(values);
+  MPI_Reduce(send_buffer_.data(), receive_buffer_.data(), static_cast<int>(values), MPI_DOUBLE, MPI_SUM, 0, comm_);
+  MPI_Bcast(receive_buffer_.data(), static_cast<int>(values), MPI_DOUBLE, 0, comm_);
+  owned_values.resize(values);
+  for (std::size_t g = 0; g < owner_of_cell_.size(); ++g)
+    for (int a = 0; a < components; ++a)
+      owned_values[components * local_of_cell_[g] + a] = receive_buffer_[components * g + a];
 }
 
 }  // namespace tfdem

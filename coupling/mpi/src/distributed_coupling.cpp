@@ -49,6 +49,12 @@ DistributedCoupling::DistributedCoupling(MPI_Comm comm, const CartesianGrid &gri
   solid_velocity_.assign(3 * owned_volume_.size(), 0.0);
 }
 
+bool DistributedCoupling::adds_cell_totals() const {
+  int rank = 0;
+  MPI_Comm_rank(comm_, &rank);
+  return !exchange_.every_rank_holds_every_cell() || rank == 0;
+}
+
 void DistributedCoupling::sum_over_ranks(double *values, int count) const {
   MPI_Allreduce(MPI_IN_PLACE, values, count, MPI_DOUBLE, MPI_SUM, comm_);
 }
@@ -71,12 +77,13 @@ void DistributedCoupling::map(const ParticleView &particles) {
   totals_.particle_volume = 0.0;
   for (std::size_t i = 0; i < particles.count; ++i) totals_.particle_volume += sphere_volume(particles.diameter[i]);
   totals_.mapped_volume = 0.0;
-  for (std::size_t c = 0; c < owned_volume_.size(); ++c) totals_.mapped_volume += gas_.solid_volume[c];
+  if (adds_cell_totals())
+    for (std::size_t c = 0; c < owned_volume_.size(); ++c) totals_.mapped_volume += gas_.solid_volume[c];
   double volumes[2] = {totals_.particle_volume, totals_.mapped_volume};
   sum_over_ranks(volumes, 2);
   totals_.particle_volume = volumes[0];
   totals_.mapped_volume = volumes[1];
-  unsigned long floored = gas_.floored_cells;
+  unsigned long floored = adds_cell_totals() ? gas_.floored_cells : 0;
   MPI_Allreduce(MPI_IN_PLACE, &floored, 1, MPI_UNSIGNED_LONG, MPI_SUM, comm_);
   totals_.floored_cells = floored;
   struct {
@@ -197,7 +204,9 @@ void DistributedCoupling::forces(const ParticleView &particles, const double *ga
     exchange_.sum_to_owners(halo_sums_, kConservativeSumComponents, owned_sums_);
     conservative_cell_drag(owned_sums_, owned_gas, exchange_coefficient_.data(), solid_velocity_.data());
   }
-  const std::array<double, 3> sink = gas_drag_sink(owned_gas, exchange_coefficient_.data(), solid_velocity_.data());
+  const std::array<double, 3> sink = adds_cell_totals()
+                                         ? gas_drag_sink(owned_gas, exchange_coefficient_.data(), solid_velocity_.data())
+                                         : std::array<double, 3>{};
   double balance[4];
   for (int a = 0; a < 3; ++a) balance[a] = result_.momentum_imbalance[a] - sink[a];
   balance[3] = result_.drag_magnitude_sum;

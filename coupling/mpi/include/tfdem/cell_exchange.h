@@ -4,6 +4,11 @@
 // sums its particles' contributions into its halo cells, sends each halo cell's values to
 // the cell's owner (sum_to_owners), and fetches the owners' completed values back
 // (fetch_from_owners). With one rank both are copies.
+//
+// When every rank holds every cell (the gas solved whole on each rank, owner table all
+// kEveryRank), the halos' sums are added on rank 0 and broadcast, so every rank holds
+// bit-identical cell data (the ranks' copies of the gas solution then stay identical), and
+// fetching is a local copy.
 #ifndef TFDEM_CELL_EXCHANGE_H
 #define TFDEM_CELL_EXCHANGE_H
 
@@ -16,8 +21,12 @@ namespace tfdem {
 
 class CellExchange {
  public:
-  // `owner_of_cell[g]`: rank owning global cell g (the same table on every rank);
-  // `owned_cells`: the global index of each of this rank's cells, in its local order.
+  // Owner-table entry of a cell every rank holds.
+  static constexpr int kEveryRank = -1;
+
+  // `owner_of_cell[g]`: rank owning global cell g (the same table on every rank), or
+  // kEveryRank for all cells; `owned_cells`: the global index of each of this rank's cells,
+  // in its local order (every cell once when all are kEveryRank).
   CellExchange(MPI_Comm comm, std::vector<int> owner_of_cell, const std::vector<int> &owned_cells);
   CellExchange(const CellExchange &) = delete;
   CellExchange &operator=(const CellExchange &) = delete;
@@ -35,10 +44,16 @@ class CellExchange {
 
   std::size_t owned_count() const { return owned_count_; }
   std::size_t halo_count() const { return halo_size_; }
-  // Halo records received from other ranks in the last set_halo (a measure of traffic).
+  // Halo records received from other ranks in the last set_halo (a measure of traffic; 0
+  // when every rank holds every cell).
   std::size_t remote_records() const { return remote_records_; }
+  bool every_rank_holds_every_cell() const { return replicated_; }
 
  private:
+  // Owner table all kEveryRank (true), or ranks only (false); anything else throws.
+  static bool replicated_table(const std::vector<int> &owner_of_cell);
+  // sum_to_owners when every rank holds every cell: summed on rank 0, broadcast.
+  void sum_on_every_rank(const std::vector<double> &halo_values, int components, std::vector<double> &owned_values);
   // Alltoallv of `components` doubles per record.
   void exchange(const std::vector<double> &send, const std::vector<int> &send_records,
                 std::vector<double> &receive, const std::vector<int> &receive_records, int components);
@@ -55,6 +70,8 @@ class CellExchange {
   std::vector<int> receive_counts_;   // records per source rank
   std::vector<int> received_local_;   // owned local cell of each received record
   std::vector<double> send_buffer_, receive_buffer_;
+  bool replicated_ = false;
+  std::vector<int> halo_cells_;  // when replicated: the halo's global cells
 };
 
 }  // namespace tfdem

@@ -3,6 +3,9 @@
 // global grid, sends the per-cell sums of the cells they touch to those cells' owners
 // (CellExchange), and fetches back the completed cell data it needs for its particles'
 // forces. No rank ever holds other ranks' particles. With one rank this is transfer().
+// When every rank holds every cell (owner table all CellExchange::kEveryRank: the gas solved
+// whole on each rank) the cell sums reach every rank, each rank completes every cell, and
+// the cells' part of the totals is counted once (rank 0's).
 //
 // Per step: map() (void fraction on owned cells) then forces() (particle fluid forces,
 // seed 000 eq. 28, and the gas sink K, U_s on owned cells, for the method of the options).
@@ -40,7 +43,8 @@ struct CouplingTotals {
 
 class DistributedCoupling {
  public:
-  // `grid`: the global grid; `owner_of_cell[g]`: rank owning grid cell g; `owned_cells`:
+  // `grid`: the global grid; `owner_of_cell[g]`: rank owning grid cell g (or kEveryRank for
+  // all cells); `owned_cells`:
   // this rank's grid cells in its local order, with their volumes `owned_volume`.
   DistributedCoupling(MPI_Comm comm, const CartesianGrid &grid, std::vector<int> owner_of_cell,
                       const std::vector<int> &owned_cells, std::vector<double> owned_volume,
@@ -67,6 +71,8 @@ class DistributedCoupling {
   const CellExchange &exchange() const { return exchange_; }
 
  private:
+  // Whether this rank's cells enter the totals (each cell counted once over the ranks).
+  bool adds_cell_totals() const;
   // Sum over ranks of `values` in place.
   void sum_over_ranks(double *values, int count) const;
   // One record of kStateComponents per owned cell, for the particle ranks to fetch.
