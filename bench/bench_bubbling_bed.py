@@ -26,7 +26,7 @@ import sys
 from tfdem import BUILD_DIR, TUTORIALS
 from tfdem.case import Case
 from tfdem.outputs import OutputError, log_numbers, solver_timing
-from tfdem.run import RunError, run as run_program, write_decompose_dict
+from tfdem.run import RunError, run as run_program
 
 TUTORIAL = os.path.join(TUTORIALS, "bubbling_bed")
 PACKING = os.path.join(TUTORIALS, "bubbling_bed_packing")
@@ -34,10 +34,10 @@ REPLAY = os.path.join(BUILD_DIR, "bench", "tfdem-dem-replay")
 
 
 def run(args, cwd, log, ranks=1):
-    """Run (under mpirun for ranks > 1; OpenFOAM solvers get -parallel in args) with the
-    package's environment, output to cwd/log. Stops on failure."""
+    """Run (under mpirun for ranks > 1; the gas whole on every rank) with the package's
+    environment, output to cwd/log. Stops on failure."""
     try:
-        run_program(args, cwd, log, ranks, parallel_flag=False)
+        run_program(args, cwd, log, ranks)
     except RunError as e:
         sys.exit(str(e))
     return os.path.join(cwd, log)
@@ -65,10 +65,6 @@ def prepare(path, end_time, ranks, interval):
     case.set_control(endTime=end_time, writeInterval=end_time)
     set_interval(case, interval)
     run(["blockMesh"], path, "log.blockMesh")
-    if ranks > 1:
-        # Gas split like LIGGGHTS' `processors * 1 1` in in.bed: side by side in x.
-        write_decompose_dict(path, (ranks, 1, 1))
-        run(["decomposePar"], path, "log.decomposePar")
 
 
 def number(pattern, log):
@@ -81,7 +77,7 @@ def number(pattern, log):
 
 def coupled_and_replay(case, ranks, interval, intervals):
     """One coupled run and its DEM-only replay: (coupled split dict, replay DEM seconds)."""
-    solver = ["tfdemFoam", "-recordForces", "forces.bin"] + (["-parallel"] if ranks > 1 else [])
+    solver = ["tfdemFoam", "-recordForces", "forces.bin"]
     log = run(solver, case, "log.tfdemFoam", ranks)
     try:
         timing = solver_timing(log)

@@ -1,4 +1,5 @@
 #include "tfdemCheckpoint.H"
+#include "tfdemRanks.H"
 #include "IOmanip.H"
 #include "IFstream.H"
 #include "OFstream.H"
@@ -120,13 +121,13 @@ void Foam::TfdemCheckpoint::write
 ) const
 {
     const fileName dir = directory(runTime_.timeName());
-    if (Pstream::master())
+    if (TfdemRanks::writesCase())
     {
         mkDir(dir);
     }
     MPI_Barrier(MPI_COMM_WORLD);
     const bool demRestart = dem.write_restart(dir/restartName);
-    if (Pstream::master())
+    if (TfdemRanks::writesCase())
     {
         const fileName partial(dir/(markerName + ".tmp"));
         {

@@ -11,6 +11,7 @@
 #include "tfdem/distributed_coupling.h"
 #include "tfdemOutlets.H"
 #include "tfdemParticleAccounting.H"
+#include "tfdemRanks.H"
 #include "tfdemStartupChecks.H"
 #include "tfdemStatistics.H"
 
@@ -25,8 +26,6 @@ double secondsSince(Clock::time_point start)
 {
     return std::chrono::duration<double>(Clock::now() - start).count();
 }
-
-bool ownsMpi = false;
 
 // The components of a vector field's internal values, 3 doubles per cell (Vector<scalar> is
 // three contiguous scalars), for the core's flat arrays.
@@ -82,13 +81,6 @@ Foam::TfdemCoupling::TfdemCoupling
     }
     Info<< tfdem::describe(config_).c_str() << endl;
 
-    int initialised = 0;
-    MPI_Initialized(&initialised);
-    if (!initialised)
-    {
-        MPI_Init(nullptr, nullptr);
-        ownsMpi = true;
-    }
     MPI_Comm_dup(MPI_COMM_WORLD, &demComm_);
 
     tfdemChecks::gasProperties(config_, rho, nu);
@@ -138,10 +130,6 @@ Foam::TfdemCoupling::~TfdemCoupling()
     dem_.reset();
     core_.reset();
     MPI_Comm_free(&demComm_);
-    if (ownsMpi)
-    {
-        MPI_Finalize();
-    }
 }
 
 
@@ -301,14 +289,7 @@ void Foam::TfdemCoupling::stopOnEmptyGas(const tfdem::ParticleView& view) const
         mine << "    id " << dem_->tags()[p] << " at (" << x[0] << ' ' << x[1] << ' '
              << x[2] << ") m, d = " << view.diameter[p] << " m\n";
     }
-    List<string> lines(Pstream::nProcs());
-    lines[Pstream::myProcNo()] = mine.str();
-    Pstream::gatherList(lines);
-    std::string listed;
-    for (const string& l : lines)
-    {
-        listed += l;
-    }
+    const std::string listed = TfdemRanks::gatherText(mine.str());
     FatalErrorInFunction
         << "at t = " << mesh_.time().value() << " s the particles mapped into grid cell "
         << cell << " (i j k = " << i << ' ' << j << ' ' << k << ", centre ("

@@ -22,6 +22,7 @@ Description
 #include "pimpleControl.H"
 #include "fvOptions.H"
 #include "tfdemCoupling.H"
+#include "tfdemRanks.H"
 #include "tfdemStartupChecks.H"
 
 #include <chrono>
@@ -41,11 +42,14 @@ int main(int argc, char *argv[])
         " the DEM-only replay of bench/bench_bubbling_bed.py"
     );
 
+    TfdemRanks::start(argc, argv);
+
     #include "postProcess.H"
 
     #include "addCheckCaseOptions.H"
     #include "setRootCaseLists.H"
     #include "createTime.H"
+    TfdemRanks::checkTime(runTime);
     #include "createMesh.H"
     #include "createControl.H"
     #include "createTimeControls.H"
@@ -96,7 +100,10 @@ int main(int argc, char *argv[])
             coupling->gasSolved();
         }
 
-        runTime.write();
+        if (TfdemRanks::writesGas())
+        {
+            runTime.write();
+        }
 
         if (coupling.valid())
         {
@@ -111,8 +118,11 @@ int main(int argc, char *argv[])
     {
         coupling->report();
     }
+    coupling.clear();
 
     Info<< "End\n" << endl;
+
+    TfdemRanks::finish();
 
     return 0;
 }

@@ -1,4 +1,5 @@
 #include "tfdemForceRecord.H"
+#include "tfdemRanks.H"
 #include "IOmanip.H"
 
 #include <mpi.h>
@@ -8,13 +9,25 @@
 
 #include "dem_instance.h"
 
+namespace
+{
+
+double slowestRank(double seconds)
+{
+    MPI_Allreduce(MPI_IN_PLACE, &seconds, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+    return seconds;
+}
+
+} // End anonymous namespace
+
+
 Foam::TfdemForceRecord::TfdemForceRecord(const fileName& file)
 {
     if (file.empty())
     {
         return;
     }
-    const fileName path(file + "." + Foam::name(Pstream::myProcNo()));
+    const fileName path(file + "." + Foam::name(TfdemRanks::rank()));
     out_.open(path, std::ios::binary);
     if (!out_)
     {
@@ -57,7 +70,7 @@ void Foam::TfdemForceRecord::report(const tfdem::DemInstance& dem) const
     if (out_.is_open())
     {
         Info<< "TFDEM record: forces written in "
-            << returnReduce(seconds_, maxOp<scalar>()) << " s (not in the split below)"
+            << slowestRank(seconds_) << " s (not in the split below)"
             << endl;
     }
 }

@@ -2,6 +2,9 @@
 
 #include <mpi.h>
 
+#include "tfdem/cell_exchange.h"
+#include "tfdemRanks.H"
+
 #include <cmath>
 
 namespace
@@ -51,12 +54,14 @@ Foam::TfdemGrid Foam::discoverGrid(const fvMesh& mesh)
         ++meshCellsInGridCell[g];
     }
     reduce(uniform, andOp<bool>());
+    // The ranks that share the mesh: all when decomposed, each alone when the gas is whole
+    const MPI_Comm gasRanks = TfdemRanks::gasWhole() ? MPI_COMM_SELF : MPI_COMM_WORLD;
     if (uniform)
     {
         MPI_Allreduce
         (
             MPI_IN_PLACE, meshCellsInGridCell.data(), grid.cell_count(), MPI_INT,
-            MPI_SUM, MPI_COMM_WORLD
+            MPI_SUM, gasRanks
         );
         for (const int n : meshCellsInGridCell)
         {
@@ -72,15 +77,22 @@ Foam::TfdemGrid Foam::discoverGrid(const fvMesh& mesh)
             << " cells in the box " << domain << exit(FatalError);
     }
     out.ownerOfGridCell.assign(grid.cell_count(), -1);
-    for (const int g : out.gridCellOfCell)
+    if (TfdemRanks::gasWhole())
     {
-        out.ownerOfGridCell[g] = Pstream::myProcNo();
+        out.ownerOfGridCell.assign(grid.cell_count(), tfdem::CellExchange::kEveryRank);
     }
-    MPI_Allreduce
-    (
-        MPI_IN_PLACE, out.ownerOfGridCell.data(), grid.cell_count(), MPI_INT, MPI_MAX,
-        MPI_COMM_WORLD
-    );
+    else
+    {
+        for (const int g : out.gridCellOfCell)
+        {
+            out.ownerOfGridCell[g] = Pstream::myProcNo();
+        }
+        MPI_Allreduce
+        (
+            MPI_IN_PLACE, out.ownerOfGridCell.data(), grid.cell_count(), MPI_INT, MPI_MAX,
+            MPI_COMM_WORLD
+        );
+    }
     Info<< "TFDEM coupling: Cartesian grid " << grid.count[0] << " x "
         << grid.count[1] << " x " << grid.count[2] << " cells of "
         << grid.spacing[0] << " x " << grid.spacing[1] << " x "

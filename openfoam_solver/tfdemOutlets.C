@@ -1,4 +1,5 @@
 #include "tfdemOutlets.H"
+#include "tfdemRanks.H"
 #include "IOmanip.H"
 
 #include <mpi.h>
@@ -63,7 +64,7 @@ Foam::TfdemOutlets::TfdemOutlets
         Info<< "TFDEM outlets: particles leave through '" << name.c_str() << "' ("
             << "xyz"[o.axis] << (o.side > 0 ? " >= " : " <= ") << o.position << " m)" << endl;
     }
-    if (!outlets_.empty() && Pstream::master())
+    if (!outlets_.empty() && TfdemRanks::writesCase())
     {
         const Time& runTime = mesh.time();
         const fileName dir(runTime.globalPath()/"postProcessing"/"tfdemOutlets"/runTime.timeName());
@@ -119,9 +120,9 @@ Foam::TfdemOutlets::Removed Foam::TfdemOutlets::remove(tfdem::DemInstance& dem)
     }
     MPI_Allreduce(MPI_IN_PLACE, tally.data(), int(tally.size()), MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
     int count = int(mine.size());
-    std::vector<int> counts(Pstream::nProcs()), offsets(Pstream::nProcs() + 1, 0);
+    std::vector<int> counts(TfdemRanks::count()), offsets(TfdemRanks::count() + 1, 0);
     MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
-    for (int r = 0; r < Pstream::nProcs(); ++r)
+    for (int r = 0; r < TfdemRanks::count(); ++r)
     {
         offsets[r + 1] = offsets[r] + counts[r];
     }

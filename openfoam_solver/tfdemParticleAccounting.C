@@ -1,4 +1,5 @@
 #include "tfdemParticleAccounting.H"
+#include "tfdemRanks.H"
 
 #include <mpi.h>
 
@@ -80,14 +81,8 @@ void Foam::TfdemParticleAccounting::check
         return;
     }
     label lostHere = 0;
-    List<string> lost(Pstream::nProcs());
-    lost[Pstream::myProcNo()] = describeLost(dem, removedTags, lostHere);
-    Pstream::gatherList(lost);
-    std::string named;
-    for (const string& text : lost)
-    {
-        named += text;
-    }
+    const std::string named =
+        TfdemRanks::gatherText(describeLost(dem, removedTags, lostHere));
     FatalErrorInFunction
         << totals_.count - now.count << " of " << totals_.count
         << " particles were lost in the DEM between t = " << lastTime_ << " and "
@@ -112,9 +107,10 @@ std::string Foam::TfdemParticleAccounting::describeLost
 {
     // Every current ID, over all ranks (only on this error path)
     int mine = int(dem.local_count());
-    std::vector<int> counts(Pstream::nProcs()), offsets(Pstream::nProcs() + 1, 0);
+    const int ranks = TfdemRanks::count();
+    std::vector<int> counts(ranks), offsets(ranks + 1, 0);
     MPI_Allgather(&mine, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
-    for (int r = 0; r < Pstream::nProcs(); ++r)
+    for (int r = 0; r < ranks; ++r)
     {
         offsets[r + 1] = offsets[r] + counts[r];
     }
@@ -138,14 +134,14 @@ std::string Foam::TfdemParticleAccounting::describeLost
         {
             const double* x = &lastPositions_[3*i];
             const double* v = &lastVelocities_[3*i];
-            out << "  [rank " << Pstream::myProcNo() << "] id " << lastTags_[i] << " at ("
+            out << "  [rank " << TfdemRanks::rank() << "] id " << lastTags_[i] << " at ("
                 << x[0] << ' ' << x[1] << ' ' << x[2] << ") m, v = (" << v[0] << ' '
                 << v[1] << ' ' << v[2] << ") m/s\n";
         }
     }
     if (lost > namedLostParticles)
     {
-        out << "  [rank " << Pstream::myProcNo() << "] and " << lost - namedLostParticles
+        out << "  [rank " << TfdemRanks::rank() << "] and " << lost - namedLostParticles
             << " more\n";
     }
     return out.str();

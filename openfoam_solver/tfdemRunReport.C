@@ -1,4 +1,7 @@
 #include "tfdemRunReport.H"
+#include "tfdemRanks.H"
+
+#include <mpi.h>
 
 #include <cmath>
 
@@ -133,9 +136,17 @@ void Foam::TfdemRunReport::report
             << " of a step's mean |drag impulse| (the particles feel the gas velocity of the"
             << " step before)" << endl;
     }
-    if (Pstream::parRun())
+    if (TfdemRanks::gasWhole())
     {
-        Info<< "TFDEM parallel: " << returnReduce(remoteRecords_, sumOp<scalar>())
+        Info<< "TFDEM parallel: the gas whole on each of " << TfdemRanks::count()
+            << " ranks; the cells' particle sums added on rank 0 and broadcast in each of "
+            << couplingSteps_ << " coupling steps" << endl;
+    }
+    else if (TfdemRanks::count() > 1)
+    {
+        double received = remoteRecords_;
+        MPI_Allreduce(MPI_IN_PLACE, &received, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+        Info<< "TFDEM parallel: " << received
             << " cell records received from particles on other ranks over "
             << couplingSteps_ << " coupling steps" << endl;
     }
@@ -147,6 +158,6 @@ void Foam::TfdemRunReport::report
             << " s, forces " << s[2] << " s, gas " << s[3] << " s, statistics " << s[4]
             << " s, checkpoints " << s[5] << " s; (DEM + coupling + gas) / DEM = "
             << (s[0] > 0 ? (s[0] + s[1] + s[2] + s[3])/s[0] : 0) << " on "
-            << Pstream::nProcs() << " rank(s)" << endl;
+            << TfdemRanks::count() << " rank(s)" << endl;
     }
 }

@@ -1,4 +1,5 @@
 #include "tfdemStatistics.H"
+#include "tfdemRanks.H"
 #include "IOmanip.H"
 
 #include <mpi.h>
@@ -84,7 +85,7 @@ Foam::TfdemStatistics::TfdemStatistics
             )
         );
     }
-    if (Pstream::master())
+    if (TfdemRanks::writesCase())
     {
         const fileName dir
         (
@@ -301,19 +302,19 @@ void Foam::TfdemStatistics::record
         }
     }
     int size = int(mine.size());
-    std::vector<int> sizes(Pstream::nProcs()), offsets(Pstream::nProcs() + 1, 0);
+    std::vector<int> sizes(TfdemRanks::count()), offsets(TfdemRanks::count() + 1, 0);
     MPI_Gather(&size, 1, MPI_INT, sizes.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
-    for (int r = 0; r < Pstream::nProcs(); ++r)
+    for (int r = 0; r < TfdemRanks::count(); ++r)
     {
         offsets[r + 1] = offsets[r] + sizes[r];
     }
-    std::vector<double> all(Pstream::master() ? offsets.back() : 0);
+    std::vector<double> all(TfdemRanks::writesCase() ? offsets.back() : 0);
     MPI_Gatherv
     (
         mine.data(), size, MPI_DOUBLE, all.data(), sizes.data(), offsets.data(),
         MPI_DOUBLE, 0, MPI_COMM_WORLD
     );
-    if (Pstream::master())
+    if (TfdemRanks::writesCase())
     {
         const fileName dir(runTime.globalPath()/"VTK");
         mkDir(dir);

@@ -32,12 +32,12 @@ from tfdem.batch import BatchError, CaseRun, run_batch
 from tfdem.accuracy import METRICS, map_error, pareto_front, scalar_error, scalar_metrics
 from tfdem.bed import BedOutputs, write_bed_probes
 from tfdem.case import Case, CaseError, set_sub_dict_entry
-from tfdem.run import RunError, decompose, run
+from tfdem.run import DEFAULT_GAS_LAYOUT, GAS_LAYOUTS, RunError, command, prepare_gas, run
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 SWEEP_KEYS = ("template", "packing", "end_time", "window", "batch", "band", "field_interval", "statistics_interval",
               "reference", "points")
-POINT_KEYS = ("dem_time_step", "gas_time_step", "refine", "coupling", "fv_solution", "ranks")
+POINT_KEYS = ("dem_time_step", "gas_time_step", "refine", "coupling", "fv_solution", "ranks", "gas")
 
 
 class SweepError(Exception):
@@ -84,6 +84,8 @@ def _check_point(path, name, spec):
             raise bad(key, "a positive number of seconds")
     if "ranks" in spec and not (isinstance(spec["ranks"], int) and spec["ranks"] >= 1):
         raise bad("ranks", "a whole number >= 1")
+    if "gas" in spec and spec["gas"] not in GAS_LAYOUTS:
+        raise bad("gas", " or ".join(f"'{k}' ({v})" for k, v in GAS_LAYOUTS.items()))
     refine = spec.get("refine")
     if refine is not None and not (isinstance(refine, list) and len(refine) == 2
                                    and all(isinstance(f, int) and f >= 1 for f in refine)):
@@ -98,15 +100,14 @@ class Point(CaseRun):
         self.spec, self.sweep = spec or {}, sweep
         self.template = os.path.join(TUTORIALS, sweep["template"])
         self.ranks = int(self.spec.get("ranks", 1))
+        self.gas = self.spec.get("gas", DEFAULT_GAS_LAYOUT)
 
     def command(self):
-        if self.ranks > 1:
-            return ["mpirun", "-np", str(self.ranks), self.solver, "-parallel"]
-        return [self.solver]
+        return command([self.solver], self.ranks, self.gas)
 
     def complete_fields(self):
-        # a parallel point restarts from its beginning (its checkpoints are per processor)
-        return ("tfdem.checkpoint",) if self.ranks == 1 else ("no-resume",)
+        # a split point restarts from its beginning (its checkpoints are per processor)
+        return ("no-resume",) if self.ranks > 1 and self.gas == "split" else ("tfdem.checkpoint",)
 
     def prepare(self, end_time):
         template = Case(self.template)
@@ -127,8 +128,7 @@ class Point(CaseRun):
         shutil.copy(self._packing(), case.file(case.dem_command("read_data")[1]))
         run(["blockMesh"], case.path, "log.blockMesh")
         write_bed_probes(case, self.sweep["field_interval"], self.sweep["statistics_interval"])
-        if self.ranks > 1:
-            decompose(case.path, self.ranks)
+        prepare_gas(case.path, self.ranks, self.gas)
 
     def write_interval(self, end_time):
         return min(1.0, end_time)

@@ -285,8 +285,7 @@ class VariantRun(CaseRun):
             self.case.set_coupling(key, value)
         tfdem.run.run(["blockMesh"], self.case.path, "log.blockMesh")
         self.prepare_mesh()
-        if self.ranks > 1:
-            tfdem.run.decompose(self.case.path, self.ranks)
+        tfdem.run.prepare_gas(self.case.path, self.ranks)
 
     def write_interval(self, end_time):
         """The tutorial's checkpoint interval, or end_time when shorter."""

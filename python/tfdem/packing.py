@@ -70,7 +70,7 @@ def pour(case, count, out="bed.data", ranks=1, runner=tfdem.run.run, **options):
     for name, value in pour_variables(case, count, **options).items():
         args += ["-var", name, repr(value) if isinstance(value, float) else str(value)]
     args += ["-var", "out", out]
-    _, output = runner(args, case.path, "log.pour", ranks=ranks, parallel_flag=False)
+    _, output = runner(args, case.path, "log.pour", ranks=ranks)
     lines = [line for line in output.splitlines() if line.startswith("TFDEM packed bed")]
     if not lines:
         raise CaseError(f"{case.file('log.pour')}: the pour printed no 'TFDEM packed bed' line")

@@ -1,4 +1,4 @@
-"""Running TFDEM's programs and OpenFOAM's tools: environment, MPI, decomposition."""
+"""Running TFDEM's programs and OpenFOAM's tools: environment, MPI, gas layout, decomposition."""
 import os
 import re
 import subprocess
@@ -27,18 +27,34 @@ def environment():
     return env
 
 
-def command(args, ranks=1):
-    """args under mpirun -np ranks (with -parallel for OpenFOAM solvers) when ranks > 1."""
+# How tfdemFoam's ranks share the gas mesh (openfoam_solver/tfdemRanks.H); the particles are
+# always split by LIGGGHTS.
+GAS_LAYOUTS = {
+    "whole": "every rank solves the whole mesh (mpirun without -parallel, no decomposition)",
+    "split": "the mesh decomposed in x (decomposePar, mpirun ... -parallel)",
+}
+# On the tutorials' meshes (<= a few thousand cells) whole is the faster: bench/README.md.
+DEFAULT_GAS_LAYOUT = "whole"
+
+
+def check_gas_layout(gas):
+    if gas not in GAS_LAYOUTS:
+        raise ValueError(f"gas layout '{gas}': use " + " or ".join(f"'{k}' ({v})" for k, v in GAS_LAYOUTS.items()))
+    return gas
+
+
+def command(args, ranks=1, gas=DEFAULT_GAS_LAYOUT):
+    """args under mpirun -np ranks when ranks > 1, with -parallel when the gas is split."""
     if ranks <= 1:
         return list(args)
-    return ["mpirun", "-np", str(ranks)] + list(args) + ["-parallel"]
+    return ["mpirun", "-np", str(ranks)] + list(args) + (["-parallel"] if check_gas_layout(gas) == "split" else [])
 
 
-def run(args, cwd, log_name, ranks=1, expect_success=True, parallel_flag=True):
-    """Run a program in cwd (under mpirun when ranks > 1), its output to cwd/log_name; return
-    (exit code, output). RunError when it fails and success was expected."""
-    full = command(args, ranks) if parallel_flag else (["mpirun", "-np", str(ranks)] + list(args)
-                                                       if ranks > 1 else list(args))
+def run(args, cwd, log_name, ranks=1, expect_success=True, gas=DEFAULT_GAS_LAYOUT):
+    """Run a program in cwd (under mpirun when ranks > 1, with -parallel when the gas is
+    split), its output to cwd/log_name; return (exit code, output). RunError when it fails and
+    success was expected."""
+    full = command(args, ranks, gas)
     # errors="replace": LIGGGHTS 3.8.0, aborting on 2 ranks, sometimes echoes an error line
     # from a freed buffer (bytes that are not UTF-8) on the second rank.
     proc = subprocess.run(full, cwd=cwd, env=environment(), stdout=subprocess.PIPE,
@@ -52,25 +68,11 @@ def run(args, cwd, log_name, ranks=1, expect_success=True, parallel_flag=True):
     return proc.returncode, proc.stdout
 
 
-def start(args, cwd, log_name, ranks=1):
+def start(args, cwd, log_name, ranks=1, gas=DEFAULT_GAS_LAYOUT):
     """Start a program in the background (its own process group), output to cwd/log_name."""
     log = open(os.path.join(cwd, log_name), "w")
-    return subprocess.Popen(command(args, ranks), cwd=cwd, env=environment(), stdout=log,
+    return subprocess.Popen(command(args, ranks, gas), cwd=cwd, env=environment(), stdout=log,
                             stderr=subprocess.STDOUT, start_new_session=True)
-
-
-def mesh_cell_count(case_path):
-    """Cells of the case's constant/polyMesh (the note OpenFOAM writes in its owner file)."""
-    path = os.path.join(case_path, "constant", "polyMesh", "owner")
-    try:
-        with open(path, errors="replace") as f:
-            head = f.read(2000)
-    except OSError:
-        raise RunError(f"{path} is missing: make the mesh (blockMesh) before decomposing") from None
-    found = re.search(r"nCells:\s*(\d+)", head)
-    if not found:
-        raise RunError(f"{path}: no 'nCells:' in its header note; decompose it by hand (decomposePar)")
-    return int(found.group(1))
 
 
 def write_decompose_dict(case_path, split):
@@ -82,45 +84,31 @@ def write_decompose_dict(case_path, split):
                   f"coeffs          {{ n ({nx} {ny} {nz}); }}\n")
 
 
-def write_whole_gas_dict(case_path, ranks):
-    """system/decomposeParDict and constant/cellDecomposition putting every cell on the first
-    of `ranks` ranks (the others get an empty mesh)."""
-    cells = mesh_cell_count(case_path)
-    with open(os.path.join(case_path, "constant", "cellDecomposition"), "w") as out:
-        out.write("FoamFile { version 2.0; format ascii; class labelList; object cellDecomposition; }\n"
-                  f"{cells}\n(\n" + "0\n" * cells + ")\n")
-    with open(os.path.join(case_path, "system", "decomposeParDict"), "w") as out:
-        out.write("FoamFile { version 2.0; format ascii; class dictionary; object decomposeParDict; }\n"
-                  f"numberOfSubdomains {ranks};\nmethod          manual;\n"
-                  "coeffs          { dataFile \"cellDecomposition\"; }\n")
-
-
-def decompose(case_path, ranks, layout="split"):
-    """Decompose the case's mesh and fields for `ranks` ranks: the gas split in x in equal
-    parts (as LIGGGHTS' `processors * 1 1` cuts the particles), or `whole` on the first rank
-    (the other ranks run only their part of the DEM; on the 675-cell jet bed no faster than
-    split, bench/README.md). Returns the layout."""
-    if layout == "whole":
-        write_whole_gas_dict(case_path, ranks)
-    elif layout == "split":
-        write_decompose_dict(case_path, (ranks, 1, 1))
-    else:
-        raise ValueError(f"gas layout '{layout}': use 'whole' or 'split'")
+def decompose(case_path, ranks):
+    """Decompose the case's mesh and fields for `ranks` ranks, the gas split in x in equal
+    parts (as LIGGGHTS' `processors * 1 1` cuts the particles)."""
+    write_decompose_dict(case_path, (ranks, 1, 1))
     run(["decomposePar", "-force"], case_path, "log.decomposePar")
-    return layout
+
+
+def prepare_gas(case_path, ranks, gas=DEFAULT_GAS_LAYOUT):
+    """What the gas layout needs before the run: the decomposition when split on > 1 rank."""
+    if ranks > 1 and check_gas_layout(gas) == "split":
+        decompose(case_path, ranks)
 
 
 def main(argv=None):
-    """python3 -m tfdem.run decompose CASE RANKS [split|whole]: decompose a case (Allrun scripts)."""
+    """python3 -m tfdem.run decompose CASE RANKS: split a case's gas over RANKS ranks, for
+    `mpirun -np RANKS tfdemFoam -parallel` (the whole layout needs no decomposition)."""
     import sys
     args = sys.argv[1:] if argv is None else argv
-    if len(args) not in (3, 4) or args[0] != "decompose" or not args[2].isdigit() or int(args[2]) < 2:
-        sys.exit("usage: python3 -m tfdem.run decompose CASE RANKS(>= 2) [split|whole]")
+    if len(args) != 3 or args[0] != "decompose" or not args[2].isdigit() or int(args[2]) < 2:
+        sys.exit("usage: python3 -m tfdem.run decompose CASE RANKS(>= 2)")
     try:
-        layout = decompose(args[1], int(args[2]), *args[3:])
-    except (RunError, ValueError) as e:
+        decompose(args[1], int(args[2]))
+    except RunError as e:
         sys.exit(f"tfdem.run: {e}")
-    print(f"gas {layout} on {args[2]} ranks")
+    print(f"gas split on {args[2]} ranks")
     return 0
 
 

@@ -1,6 +1,6 @@
 """Joint checkpoint/restart of gas and particles (seed 000's uniform-inflow bed, 0.2 s).
 
-For 1 and 2 ranks: run 0.2 s straight through; run it again, kill it with SIGKILL after the
+For 1 rank, and 2 ranks with the gas whole on each and split between them: run 0.2 s straight through; run it again, kill it with SIGKILL after the
 checkpoint at 0.1 s was written, and resume with startFrom latestTime. Expected: bit for bit
 the same state at 0.2 s -- the gas fields (p, U, voidFraction) and the whole DEM state (the
 LIGGGHTS restart file: positions, velocities, spins, contact histories, held fluid forces) --
@@ -17,7 +17,7 @@ import time
 from tfdem import TUTORIALS
 from tfdem.case import Case
 from tfdem.outputs import joined_series
-from tfdem.run import RunError, decompose, run, start
+from tfdem.run import RunError, prepare_gas, run, start
 from tfdem_testlib import Checks, scratch
 
 END_TIME, WRITE_INTERVAL, KILL_AFTER = 0.2, 0.1, 0.15
@@ -30,20 +30,19 @@ def packed_bed():
     return os.path.join(where, "bed.data")
 
 
-def prepared(name, bed, ranks):
+def prepared(name, bed, ranks, gas):
     case = Case(os.path.join(TUTORIALS, "bubbling_bed")).copy_to(scratch(name))
     os.symlink(bed, case.file("bed.data"))
     case.set_control(endTime=END_TIME, writeInterval=WRITE_INTERVAL, writePrecision=17)
     case.set_coupling("output.statistics_interval", 0.01)
     run(["blockMesh"], case.path, "log.blockMesh")
-    if ranks > 1:
-        decompose(case.path, ranks)
+    prepare_gas(case.path, ranks, gas)
     return case
 
 
-def kill_after(case, ranks, t_kill):
+def kill_after(case, ranks, gas, t_kill):
     """Run from the start and SIGKILL the whole run once the log reaches t_kill."""
-    proc = start(["tfdemFoam"], case.path, "log.killed", ranks)
+    proc = start(["tfdemFoam"], case.path, "log.killed", ranks, gas)
     log = case.file("log.killed")
     while proc.poll() is None:
         if f"\nTime = {t_kill}\n" in open(log, errors="replace").read():
@@ -53,8 +52,8 @@ def kill_after(case, ranks, t_kill):
     proc.wait()
 
 
-def field_files(case, ranks, time_name):
-    roots = [case.file(f"processor{r}") for r in range(ranks)] if ranks > 1 else [case.path]
+def field_files(case, ranks, gas, time_name):
+    roots = [case.file(f"processor{r}") for r in range(ranks)] if ranks > 1 and gas == "split" else [case.path]
     return [os.path.join(root, time_name, name) for root in roots for name in ("p", "U", "voidFraction")]
 
 
@@ -63,19 +62,19 @@ def same_bytes(a, b):
         return fa.read() == fb.read()
 
 
-def check_ranks(checks, bed, ranks):
-    label = f"{ranks} rank(s)"
-    straight = prepared(f"restart_straight_{ranks}", bed, ranks)
-    run(["tfdemFoam"], straight.path, "log.tfdemFoam", ranks)
-    resumed = prepared(f"restart_resumed_{ranks}", bed, ranks)
-    kill_after(resumed, ranks, KILL_AFTER)
+def check_ranks(checks, bed, ranks, gas="whole"):
+    label = f"{ranks} rank(s)" + (f", gas {gas}" if ranks > 1 else "")
+    straight = prepared(f"restart_straight_{ranks}_{gas}", bed, ranks, gas)
+    run(["tfdemFoam"], straight.path, "log.tfdemFoam", ranks, gas=gas)
+    resumed = prepared(f"restart_resumed_{ranks}_{gas}", bed, ranks, gas)
+    kill_after(resumed, ranks, gas, KILL_AFTER)
     checks.true(f"{label}: killed run left the checkpoint at 0.1 s",
                 os.path.isfile(resumed.file("0.1", "tfdem.checkpoint")))
     checks.true(f"{label}: killed run stopped before 0.2 s", not os.path.isdir(resumed.file("0.2")))
     resumed.set_control(startFrom="latestTime")
-    _, output = run(["tfdemFoam"], resumed.path, "log.tfdemFoam", ranks)
+    _, output = run(["tfdemFoam"], resumed.path, "log.tfdemFoam", ranks, gas=gas)
     checks.true(f"{label}: resumed from the checkpoint", "resuming gas and particles from t = 0.1 s" in output)
-    for a, b in zip(field_files(straight, ranks, "0.2"), field_files(resumed, ranks, "0.2")):
+    for a, b in zip(field_files(straight, ranks, gas, "0.2"), field_files(resumed, ranks, gas, "0.2")):
         checks.true(f"{label}: {os.path.relpath(a, straight.path)} bit for bit", same_bytes(a, b))
     checks.true(f"{label}: DEM state at 0.2 s (LIGGGHTS restart file) bit for bit",
                 same_bytes(straight.file("0.2", "dem.restart"), resumed.file("0.2", "dem.restart")))
@@ -102,7 +101,8 @@ def main():
     bed = packed_bed()
     try:
         resumed = check_ranks(checks, bed, 1)
-        check_ranks(checks, bed, 2)
+        check_ranks(checks, bed, 2, "whole")
+        check_ranks(checks, bed, 2, "split")
         check_incomplete_checkpoint(checks, resumed)
     except RunError as e:
         checks.true(str(e), False)

@@ -39,10 +39,10 @@ def poured_copy(tutorial, name, fraction, extra=()):
 
 
 def run(args, cwd, log_name, ranks=1, expect_success=True):
-    """Run a command (under mpirun when ranks > 1; OpenFOAM solvers and tools get -parallel
-    themselves in args); return (exit code, combined output); a failure ends the test."""
+    """Run a command (under mpirun when ranks > 1; a split gas needs -parallel in args, the
+    whole gas none); return (exit code, combined output); a failure ends the test."""
     try:
-        return tfdem.run.run(args, cwd, log_name, ranks, expect_success, parallel_flag=False)
+        return tfdem.run.run(args, cwd, log_name, ranks, expect_success)
     except tfdem.run.RunError as e:
         print(e)
         fail(str(e).splitlines()[0])

@@ -16,7 +16,7 @@ from tfdem.case import Case, CaseError, set_yaml_value
 from tfdem.outputs import OutputError, dump_frames, fix_print, joined_series
 from tfdem.packing import packing_settings
 from tfdem.physics import slab_solid_fraction
-from tfdem.run import mesh_cell_count, write_whole_gas_dict
+from tfdem.run import command
 from tfdem.stats import batch_means
 
 failures = []
@@ -149,14 +149,19 @@ def main():
     check("coloured fraction above a moved middle",
           coloured_above(start, [1, 2, 3, 4, 5], [0.07, 0.10, 0.13, 0.16, 0.3], 0.1, 0.15) == 0.25)
 
-    # The whole layout's decomposition: every one of the mesh's 6 cells on processor 0
-    write(os.path.join(case_dir, "constant", "polyMesh", "owner"),
-          'FoamFile\n{\n    note "nPoints:24 nCells:6 nFaces:23 nInternalFaces:5";\n}\n')
-    os.makedirs(os.path.join(case_dir, "system"), exist_ok=True)
-    write_whole_gas_dict(case_dir, 2)
-    cells = open(os.path.join(case_dir, "constant", "cellDecomposition")).read().split("(")[-1].split()
-    check("whole gas: 6 cells on processor 0", mesh_cell_count(case_dir) == 6 and cells == ["0"] * 6 + [")"], str(cells))
-    check("whole gas: 2 subdomains, manual", "numberOfSubdomains 2;" in open(os.path.join(case_dir, "system", "decomposeParDict")).read())
+    # The gas layouts' commands: whole runs without -parallel, split with it; serial as is
+    check("gas whole on 2 ranks: mpirun, no -parallel",
+          command(["tfdemFoam"], 2, "whole") == ["mpirun", "-np", "2", "tfdemFoam"])
+    check("gas split on 2 ranks: -parallel",
+          command(["tfdemFoam"], 2, "split") == ["mpirun", "-np", "2", "tfdemFoam", "-parallel"])
+    check("1 rank: the program alone", command(["tfdemFoam"], 1, "split") == ["tfdemFoam"])
+    try:
+        command(["tfdemFoam"], 2, "hole")
+        message = ""
+    except ValueError as e:
+        message = str(e)
+    check("a gas layout that does not exist is named with the valid ones",
+          "'hole'" in message and "'whole'" in message and "'split'" in message, message)
 
     # A batch driver refuses an end time that is not positive (argparse's exit code 2)
     try:
