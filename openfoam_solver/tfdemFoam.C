@@ -42,9 +42,9 @@ int main(int argc, char *argv[])
         " the DEM-only replay of bench/bench_bubbling_bed.py"
     );
 
-    TfdemRanks::start(argc, argv);
-
     #include "postProcess.H"
+
+    TfdemRanks::start(argc, argv);
 
     #include "addCheckCaseOptions.H"
     #include "setRootCaseLists.H"

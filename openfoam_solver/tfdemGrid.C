@@ -76,13 +76,13 @@ Foam::TfdemGrid Foam::discoverGrid(const fvMesh& mesh)
             << returnReduce(mesh.nCells(), sumOp<label>())
             << " cells in the box " << domain << exit(FatalError);
     }
-    out.ownerOfGridCell.assign(grid.cell_count(), -1);
     if (TfdemRanks::gasWhole())
     {
         out.ownerOfGridCell.assign(grid.cell_count(), tfdem::CellExchange::kEveryRank);
     }
     else
     {
+        out.ownerOfGridCell.assign(grid.cell_count(), -1);
         for (const int g : out.gridCellOfCell)
         {
             out.ownerOfGridCell[g] = Pstream::myProcNo();

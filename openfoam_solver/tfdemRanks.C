@@ -44,7 +44,10 @@ void Foam::TfdemRanks::checkTime(Time& runTime)
     {
         return;
     }
-    const word writeControl(runTime.controlDict().get<word>("writeControl"));
+    const word writeControl
+    (
+        runTime.controlDict().getOrDefault<word>("writeControl", "timeStep")
+    );
     const bool sameStepOnEveryRank =
         writeControl == "timeStep" || writeControl == "runTime"
      || writeControl == "adjustable" || writeControl == "adjustableRunTime";
