@@ -119,23 +119,11 @@ Foam::TfdemOutlets::Removed Foam::TfdemOutlets::remove(tfdem::DemInstance& dem)
         tally[2*k + 1] += dem.masses()[i];
     }
     MPI_Allreduce(MPI_IN_PLACE, tally.data(), int(tally.size()), MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
-    int count = int(mine.size());
-    std::vector<int> counts(TfdemRanks::count()), offsets(TfdemRanks::count() + 1, 0);
-    MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
-    for (int r = 0; r < TfdemRanks::count(); ++r)
-    {
-        offsets[r + 1] = offsets[r] + counts[r];
-    }
-    if (offsets.back() == 0)
+    removed.tags = TfdemRanks::gatherIds(mine.data(), mine.size());
+    if (removed.tags.empty())
     {
         return removed;
     }
-    removed.tags.resize(offsets.back());
-    MPI_Allgatherv
-    (
-        mine.data(), count, MPI_INT, removed.tags.data(), counts.data(), offsets.data(),
-        MPI_INT, MPI_COMM_WORLD
-    );
     dem.remove_particles(removed.tags);
     for (std::size_t k = 0; k < outlets_.size(); ++k)
     {

@@ -106,20 +106,7 @@ std::string Foam::TfdemParticleAccounting::describeLost
 ) const
 {
     // Every current ID, over all ranks (only on this error path)
-    int mine = int(dem.local_count());
-    const int ranks = TfdemRanks::count();
-    std::vector<int> counts(ranks), offsets(ranks + 1, 0);
-    MPI_Allgather(&mine, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
-    for (int r = 0; r < ranks; ++r)
-    {
-        offsets[r + 1] = offsets[r] + counts[r];
-    }
-    std::vector<int> present(offsets.back());
-    MPI_Allgatherv
-    (
-        dem.tags(), mine, MPI_INT, present.data(), counts.data(), offsets.data(),
-        MPI_INT, MPI_COMM_WORLD
-    );
+    std::vector<int> present = TfdemRanks::gatherIds(dem.tags(), dem.local_count());
     present.insert(present.end(), removedTags.begin(), removedTags.end());
     std::sort(present.begin(), present.end());
     std::ostringstream out;

@@ -5,6 +5,35 @@
 #include <cstring>
 #include <vector>
 
+namespace
+{
+
+// Every rank's `count` values, concatenated in rank order, on every rank (MPI_COMM_WORLD)
+template<class Type>
+std::vector<Type> allGathered(const Type* mine, int count, MPI_Datatype type)
+{
+    const int ranks = Foam::TfdemRanks::count();
+    std::vector<int> counts(ranks), offsets(ranks + 1, 0);
+    MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
+    for (int r = 0; r < ranks; ++r)
+    {
+        offsets[r + 1] = offsets[r] + counts[r];
+    }
+    std::vector<Type> all(offsets.back());
+    if (!all.empty())
+    {
+        MPI_Allgatherv
+        (
+            mine, count, type, all.data(), counts.data(), offsets.data(), type,
+            MPI_COMM_WORLD
+        );
+    }
+    return all;
+}
+
+} // End anonymous namespace
+
+
 bool Foam::TfdemRanks::gasWhole_ = false;
 bool Foam::TfdemRanks::startedMpi_ = false;
 
@@ -86,21 +115,14 @@ int Foam::TfdemRanks::count()
 }
 
 
+std::vector<int> Foam::TfdemRanks::gatherIds(const int* mine, std::size_t count)
+{
+    return allGathered(mine, int(count), MPI_INT);
+}
+
+
 std::string Foam::TfdemRanks::gatherText(const std::string& mine)
 {
-    const int ranks = count();
-    int length = int(mine.size());
-    std::vector<int> lengths(ranks), offsets(ranks + 1, 0);
-    MPI_Allgather(&length, 1, MPI_INT, lengths.data(), 1, MPI_INT, MPI_COMM_WORLD);
-    for (int r = 0; r < ranks; ++r)
-    {
-        offsets[r + 1] = offsets[r] + lengths[r];
-    }
-    std::string all(offsets[ranks], ' ');
-    MPI_Allgatherv
-    (
-        mine.data(), length, MPI_CHAR, &all[0], lengths.data(), offsets.data(), MPI_CHAR,
-        MPI_COMM_WORLD
-    );
-    return all;
+    const std::vector<char> all = allGathered(mine.data(), int(mine.size()), MPI_CHAR);
+    return std::string(all.begin(), all.end());
 }

@@ -32,7 +32,7 @@ from tfdem.batch import BatchError, CaseRun, run_batch
 from tfdem.accuracy import METRICS, map_error, pareto_front, scalar_error, scalar_metrics
 from tfdem.bed import BedOutputs, write_bed_probes
 from tfdem.case import Case, CaseError, set_sub_dict_entry
-from tfdem.run import DEFAULT_GAS_LAYOUT, GAS_LAYOUTS, RunError, command, prepare_gas, run
+from tfdem.run import DEFAULT_GAS_LAYOUT, RunError, check_gas_layout, command, prepare_gas, run
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 SWEEP_KEYS = ("template", "packing", "end_time", "window", "batch", "band", "field_interval", "statistics_interval",
@@ -84,8 +84,11 @@ def _check_point(path, name, spec):
             raise bad(key, "a positive number of seconds")
     if "ranks" in spec and not (isinstance(spec["ranks"], int) and spec["ranks"] >= 1):
         raise bad("ranks", "a whole number >= 1")
-    if "gas" in spec and spec["gas"] not in GAS_LAYOUTS:
-        raise bad("gas", " or ".join(f"'{k}' ({v})" for k, v in GAS_LAYOUTS.items()))
+    if "gas" in spec:
+        try:
+            check_gas_layout(spec["gas"])
+        except ValueError as e:
+            raise SweepError(f"{path}: point {name}: gas: {e}") from None
     refine = spec.get("refine")
     if refine is not None and not (isinstance(refine, list) and len(refine) == 2
                                    and all(isinstance(f, int) and f >= 1 for f in refine)):

@@ -71,16 +71,17 @@ def main():
     checks.true("settling: particle in cells of the other rank", remote_records(parallel) > 0,
                 f"({remote_records(parallel):g} remote cell records)")
     one = dump_track(serial, "vy")
-    two = dump_track(parallel, "vy")
-    checks.true("settling: same samples", len(one) == len(two) == 51, f"({len(one)}, {len(two)})")
-    worst = max(abs(a[1] - b[1]) for a, b in zip(one, two)) / SettlingSphere.from_case(Case(source)).terminal_velocity()
-    checks.within("settling: max |v_1 - v_2| / u_t", worst, 0.0, TOLERANCE)
+    terminal = SettlingSphere.from_case(Case(source)).terminal_velocity()
+
+    def same_track(label, case):
+        two = dump_track(case, "vy")
+        checks.true(f"{label}: same samples", len(one) == len(two) == 51, f"({len(one)}, {len(two)})")
+        worst = max(abs(a[1] - b[1]) for a, b in zip(one, two)) / terminal
+        checks.within(f"{label}: max |v_1 - v_2| / u_t", worst, 0.0, TOLERANCE)
+    same_track("settling", parallel)
     whole = run_case(source, "identity_settling_2_whole", 2, gas="whole")
     checks.true("settling, gas whole on each rank: reported", gas_whole(whole, 2))
-    two = dump_track(whole, "vy")
-    checks.true("settling, gas whole on each rank: same samples", len(two) == 51, f"({len(two)})")
-    worst = max(abs(a[1] - b[1]) for a, b in zip(one, two)) / SettlingSphere.from_case(Case(source)).terminal_velocity()
-    checks.within("settling, gas whole on each rank: max |v_1 - v_2| / u_t", worst, 0.0, TOLERANCE)
+    same_track("settling, gas whole on each rank", whole)
 
     source = os.path.join(TUTORIALS, "packed_bed_ergun")
     bed = FixedBed(source)
