@@ -1,5 +1,7 @@
 #include "dem_console.h"
 
+#include <mpi.h>
+
 #include <cstring>
 
 namespace tfdem {
@@ -35,8 +37,9 @@ bool starts_with(const std::string &text, const char *prefix) {
 
 }  // namespace
 
-DemConsole::DemConsole(const std::string &log_path, bool keep_log, int rank) : log_path_(log_path), rank_(rank) {
-  if (keep_log) log_ = std::fopen(log_path.c_str(), "a");
+DemConsole::DemConsole(const std::string &log_path, bool keep_log, int rank, bool append)
+    : log_path_(log_path), rank_(rank) {
+  if (keep_log) log_ = std::fopen(log_path.c_str(), append ? "a" : "w");
   cookie_io_functions_t functions{nullptr, write_cookie, nullptr, close_cookie};
   stream_ = fopencookie(new Cookie{this, ""}, "w", functions);
   if (stream_) std::setvbuf(stream_, nullptr, _IOLBF, 0);
@@ -54,6 +57,17 @@ void DemConsole::close() {
 }
 
 void DemConsole::line(const std::string &text) {
+  repeats_ = text == last_line_ ? repeats_ + 1 : 0;
+  last_line_ = text;
+  if (repeats_ == kRepeatsTolerated) {
+    std::fprintf(stderr,
+                 "[DEM rank %d] LIGGGHTS printed this line %d times in a row and is stopped (it loops, e.g. on a "
+                 "damaged file it reads): %s\n[DEM rank %d] full LIGGGHTS output: %s\n",
+                 rank_, kRepeatsTolerated, text.c_str(), rank_, log_path_.c_str());
+    if (log_) std::fflush(log_);
+    MPI_Abort(MPI_COMM_WORLD, 1);
+  }
+  if (repeats_ > 10) return;  // the log keeps the first repeats
   if (log_) std::fprintf(log_, "%s\n", text.c_str());
   const bool error = starts_with(text, "ERROR");
   const bool warning = starts_with(text, "WARNING") && warnings_ < kWarningsCopied;

@@ -1,7 +1,9 @@
 // LIGGGHTS' screen output as the coupler gives it: a C stream that writes to the DEM log
 // file (rank 0) and copies every ERROR line, and the first warnings, to this rank's stderr
 // with the rank and the path of the full log. LIGGGHTS stops on an error with exit() or
-// MPI_Abort() right after printing it, so the copy is made as the line is written.
+// MPI_Abort() right after printing it, so the copy is made as the line is written. A line
+// repeated kRepeatsTolerated times in a row (LIGGGHTS looping on a damaged input, as its
+// restart reader does on a file cut short) stops the run instead of filling the disk.
 #ifndef TFDEM_DEM_CONSOLE_H
 #define TFDEM_DEM_CONSOLE_H
 
@@ -12,8 +14,9 @@ namespace tfdem {
 
 class DemConsole {
  public:
-  // Output appended to `log_path` when `keep_log` (rank 0), else only the copied lines.
-  DemConsole(const std::string &log_path, bool keep_log, int rank);
+  // Output to `log_path` when `keep_log` (rank 0; appended when `append`, else written
+  // anew), else only the copied lines.
+  DemConsole(const std::string &log_path, bool keep_log, int rank, bool append);
   ~DemConsole();
   DemConsole(const DemConsole &) = delete;
   DemConsole &operator=(const DemConsole &) = delete;
@@ -27,6 +30,7 @@ class DemConsole {
   void line(const std::string &text);
 
   static constexpr int kWarningsCopied = 10;
+  static constexpr int kRepeatsTolerated = 1000;
 
  private:
   std::string log_path_;
@@ -34,6 +38,8 @@ class DemConsole {
   std::FILE *stream_ = nullptr;
   int rank_ = 0;
   int warnings_ = 0;
+  std::string last_line_;
+  int repeats_ = 0;
   bool closed_ = false;
 };
 

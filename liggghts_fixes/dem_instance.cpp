@@ -9,14 +9,28 @@
 #include <string>
 #include <vector>
 
+#include <dirent.h>
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <sys/statvfs.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdint>
+#include <cstdlib>
+#include <iterator>
+
 #include "atom.h"
+#include "atom_vec.h"
 #include "dem_console.h"
+#include "domain.h"
 #include "fix_gravity.h"
 #include "fix_property_global.h"
 #include "fix_tfdem_coupling.h"
 #include "input.h"
 #include "lammps.h"
 #include "modify.h"
+#include "output.h"
 #include "tfdem/dem_script.h"
 #include "tfdem_liggghts.h"
 #include "universe.h"
@@ -26,6 +40,12 @@ namespace tfdem {
 namespace {
 
 std::string read_text(const std::string &path) {
+  struct stat st;
+  if (::stat(path.c_str(), &st) != 0)
+    throw std::runtime_error("DEM input script '" + path + "' not found or not readable: " + std::strerror(errno));
+  if (!S_ISREG(st.st_mode))
+    throw std::runtime_error("DEM input script '" + path + "' is not a file (a directory?): name the LIGGGHTS " +
+                             "input script itself");
   std::ifstream in(path);
   if (!in) throw std::runtime_error("DEM input script '" + path + "' not found or not readable");
   std::stringstream text;
@@ -39,51 +59,228 @@ int rank_of(MPI_Comm comm) {
   return rank;
 }
 
+// What rank 0 found, thrown on every rank (a collective step fails together).
+void throw_on_every_rank(MPI_Comm comm, const std::string &problem_on_rank_0) {
+  int length = static_cast<int>(problem_on_rank_0.size());
+  MPI_Bcast(&length, 1, MPI_INT, 0, comm);
+  if (length == 0) return;
+  std::string problem(static_cast<std::size_t>(length), ' ');
+  if (rank_of(comm) == 0) problem = problem_on_rank_0;
+  MPI_Bcast(problem.data(), length, MPI_CHAR, 0, comm);
+  throw std::runtime_error(problem);
+}
+
+std::string free_space(const std::string &path) {
+  struct statvfs fs;
+  if (::statvfs(path.c_str(), &fs) != 0) return "";
+  std::ostringstream text;
+  text << " (" << static_cast<double>(fs.f_bavail) * fs.f_frsize / 1e6 << " MB free on its file system)";
+  return text.str();
+}
+
+// Whether a LIGGGHTS restart file is whole: it starts with the version record (flag 0, the
+// version text) and ends with each rank's particle block (an int count n, then n doubles),
+// rank 0 first, with the counts the ranks packed. "" when whole, else what is wrong.
+std::string restart_file_problem(const std::string &path, const std::vector<int> &block_doubles,
+                                 const std::string &version) {
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  if (!in) return "cannot be read back: " + std::string(std::strerror(errno));
+  const std::uint64_t size = static_cast<std::uint64_t>(in.tellg());
+  if (size == 0) return "is empty";
+  const auto int_at = [&in](std::uint64_t offset) {
+    int value = -1;
+    in.seekg(static_cast<std::streamoff>(offset));
+    in.read(reinterpret_cast<char *>(&value), sizeof value);
+    return in ? value : -1;
+  };
+  std::uint64_t end = size;
+  for (std::size_t r = block_doubles.size(); r-- > 0;) {
+    const std::uint64_t block = sizeof(int) + sizeof(double) * static_cast<std::uint64_t>(block_doubles[r]);
+    if (end < block || int_at(end - block) != block_doubles[r])
+      return "is cut short: " + std::to_string(size) + " bytes do not end with the particle data of the " +
+             std::to_string(block_doubles.size()) + " rank(s)";
+    end -= block;
+  }
+  const std::uint64_t header = 2 * sizeof(int) + version.size() + 1;
+  if (end < header || int_at(0) != 0 || int_at(sizeof(int)) != static_cast<int>(version.size() + 1))
+    return "has no LIGGGHTS header (version record) before its particle data";
+  std::string text(version.size(), ' ');
+  in.seekg(2 * sizeof(int));
+  in.read(text.data(), static_cast<std::streamsize>(text.size()));
+  if (!in || text != version) return "was written by another LIGGGHTS version or is damaged in its header";
+  return "";
+}
+
+// Flush a file's data to disk (a checkpoint must survive a crash of the machine too).
+std::string synced(const std::string &path) {
+  const int fd = ::open(path.c_str(), O_RDONLY);
+  if (fd < 0 || ::fsync(fd) != 0) {
+    const std::string reason = std::strerror(errno);
+    if (fd >= 0) ::close(fd);
+    return "cannot be synced to disk: " + reason;
+  }
+  ::close(fd);
+  return "";
+}
+
+std::string directory_of(const std::string &path) {
+  const std::size_t slash = path.rfind('/');
+  return slash == std::string::npos ? "." : path.substr(0, slash);
+}
+
+// The descriptor this process writes `path` through (a fix opened it), or -1.
+int descriptor_of(const std::string &path) {
+  struct stat target;
+  if (::stat(path.c_str(), &target) != 0) return -1;
+  DIR *fds = ::opendir("/proc/self/fd");
+  if (!fds) return -1;
+  int found = -1;
+  const int listing = ::dirfd(fds);
+  while (const dirent *entry = ::readdir(fds)) {
+    const int fd = std::atoi(entry->d_name);
+    struct stat st;
+    if (entry->d_name[0] == '.' || fd == listing || ::fstat(fd, &st) != 0) continue;
+    const int mode = ::fcntl(fd, F_GETFL) & O_ACCMODE;
+    if (st.st_dev == target.st_dev && st.st_ino == target.st_ino && mode != O_RDONLY) found = fd;
+  }
+  ::closedir(fds);
+  return found;
+}
+
+// Where the rows of step `step` begin in text[0, end): the last line whose first word is the
+// step (a fix ave/time row, or the head of its vector block), else `end`.
+std::uint64_t start_of_step_rows(const std::string &text, std::uint64_t end, long long step) {
+  const std::string head = std::to_string(step) + " ";
+  for (std::uint64_t line = end; line-- > 0;) {
+    if (line != 0 && text[line - 1] != '\n') continue;
+    if (text.compare(line, head.size(), head) == 0) return line;
+  }
+  return end;
+}
+
+std::uint64_t recorded_size(const DemResume &resume, const std::string &path, bool &found) {
+  for (const OutputSize &o : resume.outputs)
+    if (o.first == path) {
+      found = true;
+      return o.second;
+    }
+  found = false;
+  return 0;
+}
+
+const char *kSetAside = ".tfdem-resume";
+
 }  // namespace
 
 DemInstance::DemInstance(MPI_Comm comm, const std::string &script, const std::string &log_file,
-                         const std::string &restart_file)
+                         const DemResume *resume)
     : comm_(comm) {
-  const std::string to_run = script_to_run(script, restart_file);
-  const std::string screen = log_file + ".screen";
-  std::vector<std::string> args = {"tfdem", "-log", log_file, "-screen", screen, "-echo", "none"};
+  const std::string to_run = script_to_run(script, resume);
+  const int rank = rank_of(comm);
+  if (resume && rank == 0) prepare_outputs(*resume);
+  // The logs are LIGGGHTS' own only after construction: started without them, so a resumed
+  // run appends to them instead of truncating what the stopped run wrote.
+  std::vector<std::string> args = {"tfdem", "-log", "none", "-screen", "none", "-echo", "none"};
   std::vector<char *> argv;
   for (auto &a : args) argv.push_back(a.data());
   lmp_ = new LAMMPS_NS::LAMMPS(static_cast<int>(argv.size()), argv.data(), comm);
   // LIGGGHTS' screen becomes the console: the same file on rank 0, ERROR lines on every rank.
-  const int rank = rank_of(comm);
-  if (lmp_->screen) std::fclose(lmp_->screen);
-  console_ = std::make_unique<DemConsole>(screen, rank == 0, rank);
+  console_ = std::make_unique<DemConsole>(log_file + ".screen", rank == 0, rank, resume != nullptr);
   lmp_->screen = lmp_->universe->uscreen = console_->stream();
+  command("log " + log_file + (resume ? " append" : ""));
   register_fix_styles(lmp_);
   lmp_->input->file(to_run.c_str());
   for (int i = 0; i < lmp_->modify->nfix; ++i)
     if (std::strcmp(lmp_->modify->fix[i]->style, "tfdem/coupling") == 0)
       fix_ = static_cast<LAMMPS_NS::FixTfdemCoupling *>(lmp_->modify->fix[i]);
   if (!fix_) throw std::runtime_error("DEM input script '" + script + "' defined no 'fix ID all tfdem/coupling'");
+  if (!resume) return;
+  if (resume->restart_file.empty()) {  // the bed had emptied: the script's set-up, no particles
+    command("delete_atoms group all compress no");
+    command("reset_timestep " + std::to_string(resume->step));
+  }
+  // Dumps written at the checkpoint step are not written again (as in a straight run)
+  LAMMPS_NS::Output *output = lmp_->output;
+  for (int i = 0; i < output->ndump; ++i)
+    if (output->every_dump[i] > 0 && resume->step % output->every_dump[i] == 0) output->last_dump[i] = resume->step;
+  if (rank == 0) continue_outputs(*resume);
 }
 
-std::string DemInstance::script_to_run(const std::string &script, const std::string &restart_file) const {
-  const std::string text = read_text(script);
+std::string DemInstance::script_to_run(const std::string &script, const DemResume *resume) {
+  const dem_script::Script parsed = dem_script::load(script, read_text);
   std::string problems;
-  for (const std::string &p : dem_script::coupled_script_problems(script, dem_script::parse(text)))
-    problems += "\n  " + p;
+  for (const std::string &p : dem_script::coupled_script_problems(script, parsed)) problems += "\n  " + p;
   if (!problems.empty()) throw std::runtime_error("the DEM input script cannot be coupled:" + problems);
-  if (restart_file.empty()) return script;
+  outputs_ = dem_script::output_files(parsed, &unresumable_outputs_);
+  if (!resume || resume->restart_file.empty()) return script;
   std::string resumed;
   try {
-    resumed = dem_script::resumed_script(script, text, restart_file);
+    resumed = dem_script::resumed_script(script, parsed, resume->restart_file);
   } catch (const std::invalid_argument &e) {
     throw std::runtime_error(e.what());
   }
   const std::string path = script + ".resumed";
+  std::string problem;
   if (rank_of(comm_) == 0) {
     std::ofstream out(path);
-    out << "# " << script << " resumed from " << restart_file << " by the coupler\n" << resumed;
-    if (!out) throw std::runtime_error("cannot write the resumed DEM script '" + path + "'");
+    out << resumed;
+    out.close();
+    if (!out) problem = "cannot write the resumed DEM script '" + path + "': " + std::strerror(errno);
   }
-  MPI_Barrier(comm_);
+  throw_on_every_rank(comm_, problem);
   return path;
+}
+
+void DemInstance::prepare_outputs(const DemResume &resume) {
+  for (const dem_script::OutputFile &f : outputs_) {
+    const std::string aside = f.path + kSetAside;
+    struct stat st;
+    if (f.kind != dem_script::OutputFile::Kind::Dump) {
+      // set aside (an earlier resume stopped before continuing it: its copy is the original)
+      if (::stat(aside.c_str(), &st) != 0 && ::stat(f.path.c_str(), &st) == 0 &&
+          std::rename(f.path.c_str(), aside.c_str()) != 0)
+        throw std::runtime_error(f.where + "cannot set '" + f.path + "' aside to continue it: " + std::strerror(errno));
+      continue;
+    }
+    bool recorded;
+    const std::uint64_t size = recorded_size(resume, f.path, recorded);
+    if (recorded && ::stat(f.path.c_str(), &st) == 0 && static_cast<std::uint64_t>(st.st_size) > size &&
+        ::truncate(f.path.c_str(), static_cast<off_t>(size)) != 0)
+      throw std::runtime_error(f.where + "cannot cut dump '" + f.path + "' back to its checkpoint size: " +
+                               std::strerror(errno));
+  }
+}
+
+void DemInstance::continue_outputs(const DemResume &resume) {
+  std::fflush(nullptr);  // what the fixes wrote on opening reaches their files
+  for (const dem_script::OutputFile &f : outputs_) {
+    const std::string aside = f.path + kSetAside;
+    if (f.kind == dem_script::OutputFile::Kind::Dump) continue;
+    std::ifstream in(aside, std::ios::binary);
+    if (!in) continue;  // nothing written before the checkpoint
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const int fd = descriptor_of(f.path);
+    if (fd < 0)
+      throw std::runtime_error(f.where + "'" + f.path + "' was not opened by the resumed script; its output up to " +
+                               "the checkpoint is kept in '" + aside + "'");
+    bool recorded;
+    std::uint64_t keep = std::min<std::uint64_t>(recorded_size(resume, f.path, recorded), text.size());
+    if (!recorded) keep = text.size();
+    // fix ave/time writes the checkpoint step's row again when it sets up (its next valid step)
+    if (f.kind == dem_script::OutputFile::Kind::Average && f.repeat == 1 && f.frequency > 0 &&
+        resume.step % f.frequency == 0)
+      keep = start_of_step_rows(text, keep, resume.step);
+    bool written = ::ftruncate(fd, 0) == 0;
+    for (std::uint64_t done = 0; written && done < keep;) {
+      const ssize_t n = ::pwrite(fd, text.data() + done, keep - done, static_cast<off_t>(done));
+      written = n > 0;
+      done += written ? static_cast<std::uint64_t>(n) : 0;
+    }
+    if (!written || ::lseek(fd, static_cast<off_t>(keep), SEEK_SET) < 0)
+      throw std::runtime_error(f.where + "cannot continue '" + f.path + "': " + std::strerror(errno) +
+                               "; its output up to the checkpoint is kept in '" + aside + "'");
+    std::remove(aside.c_str());
+  }
 }
 
 DemInstance::~DemInstance() {
@@ -106,10 +303,36 @@ bool DemInstance::write_restart(const std::string &path) {
   // write_restart re-exchanges atoms and rebuilds the ghosts: the next run sets up again
   // (as a run resumed from this file does, so both continue alike)
   set_up_ = false;
-  if (rank_of(comm_) == 0 && std::rename(partial.c_str(), path.c_str()) != 0)
-    throw std::runtime_error("cannot rename the DEM restart file '" + partial + "' to '" + path + "'");
-  MPI_Barrier(comm_);
+  const int ranks = [this] {
+    int n = 1;
+    MPI_Comm_size(comm_, &n);
+    return n;
+  }();
+  const int mine = lmp_->atom->avec->size_restart();
+  std::vector<int> blocks(static_cast<std::size_t>(ranks));
+  MPI_Gather(&mine, 1, MPI_INT, blocks.data(), 1, MPI_INT, 0, comm_);
+  std::string problem;
+  if (rank_of(comm_) == 0) {
+    problem = restart_file_problem(partial, blocks, lmp_->universe->version);
+    if (problem.empty()) problem = synced(partial);
+    if (problem.empty() && std::rename(partial.c_str(), path.c_str()) != 0)
+      problem = "cannot be renamed to '" + path + "': " + std::strerror(errno);
+    if (problem.empty()) problem = synced(directory_of(path));
+    if (!problem.empty()) problem = "the DEM restart file '" + partial + "' " + problem + free_space(directory_of(path));
+  }
+  throw_on_every_rank(comm_, problem);
   return true;
+}
+
+std::vector<OutputSize> DemInstance::output_sizes() {
+  std::fflush(nullptr);
+  std::vector<OutputSize> sizes;
+  if (rank_of(comm_) != 0) return sizes;
+  for (const dem_script::OutputFile &f : outputs_) {
+    struct stat st;
+    if (::stat(f.path.c_str(), &st) == 0) sizes.emplace_back(f.path, static_cast<std::uint64_t>(st.st_size));
+  }
+  return sizes;
 }
 
 void DemInstance::remove_particles(const std::vector<int> &tags) {
@@ -200,6 +423,17 @@ bool DemInstance::gravity(double g[3]) const {
 }
 
 long DemInstance::global_count() const { return static_cast<long>(lmp_->atom->natoms); }
+
+DemInstance::Box DemInstance::box() const {
+  constexpr int kFixed = 1;  // LIGGGHTS Domain::boundary: 0 p, 1 f, 2 s, 3 m
+  Box b;
+  for (int a = 0; a < 3; ++a) {
+    b.lower[a] = lmp_->domain->boxlo[a];
+    b.upper[a] = lmp_->domain->boxhi[a];
+    for (int side = 0; side < 2; ++side) b.drops[a][side] = lmp_->domain->boundary[a][side] == kFixed;
+  }
+  return b;
+}
 
 namespace {
 

@@ -1,15 +1,20 @@
 // A LIGGGHTS instance run in-process by the coupler, with TFDEM's fixes registered.
 // Exposes plain arrays only, so callers need no LIGGGHTS headers (and OpenFOAM code can use
-// it without name clashes).
+// it without name clashes). File names in the script resolve against the working directory,
+// which the coupler sets to the case.
 #ifndef TFDEM_DEM_INSTANCE_H
 #define TFDEM_DEM_INSTANCE_H
 
 #include <mpi.h>
 
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
+
+#include "tfdem/dem_script.h"
 
 namespace LAMMPS_NS {
 class LAMMPS;
@@ -20,15 +25,30 @@ namespace tfdem {
 
 class DemConsole;
 
+// A file the DEM script writes as it runs (fix print, fix ave/*, a dump of one file) and its
+// size in bytes at a checkpoint.
+using OutputSize = std::pair<std::string, std::uint64_t>;
+
+// What a run resumed from a checkpoint starts from.
+struct DemResume {
+  std::string restart_file;          // LIGGGHTS restart file; "" when the bed had emptied
+  long long step = 0;                // the DEM step of the checkpoint
+  std::vector<OutputSize> outputs;   // the script's output files at the checkpoint
+};
+
 class DemInstance {
  public:
   // Start LIGGGHTS on `comm`, log to log_file (screen output to log_file + ".screen"; its
-  // ERROR lines also go to each rank's stderr), register our fixes and run `script`, which
-  // must pass dem_script::coupled_script_problems() (one `fix tfdem/coupling`, no `run`).
-  // With `restart_file`, the script is run resumed from it (dem_script::resumed_script()).
+  // ERROR lines also go to each rank's stderr), register our fixes and run `script` (with
+  // what it includes), which must pass dem_script::coupled_script_problems() (one `fix
+  // tfdem/coupling`, no `run`). A fresh start writes the logs anew. Resumed (`resume`), the
+  // script runs flattened with read_restart for its read_data (dem_script::resumed_script());
+  // an emptied bed runs the script and deletes its particles; the logs continue, and every
+  // output file continues from its size at the checkpoint (what the stopped run wrote after
+  // it is dropped: the resumed run writes it again), so each ends as a straight run's would.
   // Throws std::runtime_error naming the script and every problem found.
   DemInstance(MPI_Comm comm, const std::string &script, const std::string &log_file,
-              const std::string &restart_file = "");
+              const DemResume *resume = nullptr);
   ~DemInstance();
   DemInstance(const DemInstance &) = delete;
   DemInstance &operator=(const DemInstance &) = delete;
@@ -39,9 +59,17 @@ class DemInstance {
   // nothing to advance (and LIGGGHTS 3.8.0 stops with "Atom types must start from 1").
   void run(long steps, bool sample_contacts = false);
   // Write a LIGGGHTS restart file (particles, contact histories, held fluid forces) to
-  // `path`, whole or not at all (written as path + ".tmp", then renamed). Collective. An
+  // `path`, whole or not at all: written as path + ".tmp", read back (its header and every
+  // rank's particle block, so a write cut short by a full disk is caught), synced to disk,
+  // then renamed. Collective. Throws std::runtime_error naming the file and what is wrong. An
   // empty DEM without insertion (nothing to run, nothing to save) writes none: false.
   bool write_restart(const std::string &path);
+  // The script's output files (rank 0; none elsewhere) and their sizes now, every C stream of
+  // this process flushed first: what a checkpoint records. Collective.
+  std::vector<OutputSize> output_sizes();
+  // The script's output files whose names are patterns or variables ("file:line: name"): a
+  // resumed run cannot cut them back to a checkpoint (a file per snapshot is written whole).
+  const std::vector<std::string> &unresumable_outputs() const { return unresumable_outputs_; }
   // Remove the particles with these atom IDs from the DEM (the same list on every rank;
   // collective). Their IDs are not reused; the next run sets up again.
   void remove_particles(const std::vector<int> &tags);
@@ -76,6 +104,14 @@ class DemInstance {
   // Total particles over all ranks, as LIGGGHTS counts them (updated at its own checks).
   long global_count() const;
 
+  // The DEM's box and, per axis and side (lower, upper), whether particles crossing that
+  // face are dropped (LIGGGHTS boundary f: fixed; p wraps them, s and m move the face).
+  struct Box {
+    double lower[3] = {0, 0, 0}, upper[3] = {0, 0, 0};
+    bool drops[3][2] = {{false, false}, {false, false}, {false, false}};
+  };
+  Box box() const;
+
   // Normal contact parameters between atom types a and b (1-based) of a linear model, as the
   // script set them with fix property/global: stiffness k_n (N/m) and either absolute
   // damping eta_n (N s/m, gamman_abs) or restitution e_n (coefficientRestitution). False when
@@ -95,14 +131,20 @@ class DemInstance {
   bool hertz_contact(int a, int b, HertzContact &out) const;
 
  private:
-  // The script's text, checked, and resumed from restart_file when that is set.
-  std::string script_to_run(const std::string &script, const std::string &restart_file) const;
+  // The text LIGGGHTS runs: the script checked, flattened and resumed when resuming.
+  std::string script_to_run(const std::string &script, const DemResume *resume);
+  // Resuming: dumps cut back to their checkpoint sizes; fix print and ave/* files set aside
+  // (their fixes open them anew), to be continued by continue_outputs().
+  void prepare_outputs(const DemResume &resume);
+  void continue_outputs(const DemResume &resume);
 
   MPI_Comm comm_;
   std::unique_ptr<DemConsole> console_;
   LAMMPS_NS::LAMMPS *lmp_ = nullptr;
   LAMMPS_NS::FixTfdemCoupling *fix_ = nullptr;
   bool set_up_ = false;
+  std::vector<dem_script::OutputFile> outputs_;
+  std::vector<std::string> unresumable_outputs_;
 };
 
 }  // namespace tfdem

@@ -14,6 +14,7 @@
 #include "tfdemRanks.H"
 #include "tfdemStartupChecks.H"
 #include "tfdemStatistics.H"
+#include "tfdemTime.H"
 
 namespace
 {
@@ -39,14 +40,9 @@ const double* flatComponents(const Foam::volVectorField& field)
 } // End anonymous namespace
 
 
-bool Foam::TfdemCoupling::caseIsCoupled(const Time& runTime)
-{
-    return isFile(runTime.globalPath()/couplingFileName);
-}
-
-
 Foam::TfdemCoupling::TfdemCoupling
 (
+    TfdemTime& runTime,
     const fvMesh& mesh,
     const volVectorField& pressureGradient,
     const volVectorField& gasVelocity,
@@ -65,7 +61,7 @@ Foam::TfdemCoupling::TfdemCoupling
     voidFraction_(voidFraction),
     exchangeCoefficient_(exchangeCoefficient),
     solidVelocity_(solidVelocity),
-    checkpoint_(mesh.time()),
+    checkpoint_(runTime),
     report_(mesh.time()),
     forceRecord_(forceRecordFile)
 {
@@ -141,18 +137,32 @@ Foam::fileName Foam::TfdemCoupling::demLog() const
 
 void Foam::TfdemCoupling::startDem()
 {
-    const fileName script(mesh_.time().globalPath()/config_.dem_script);
+    // The script by its name in coupling.yaml: the case is the working directory (TfdemCase)
+    const tfdem::DemResume resume = checkpoint_.demResume();
     try
     {
         dem_.reset
         (
-            new tfdem::DemInstance(demComm_, script, demLog(), checkpoint_.restartFile())
+            new tfdem::DemInstance
+            (
+                demComm_, config_.dem_script, demLog(),
+                checkpoint_.resuming() ? &resume : nullptr
+            )
         );
     }
     catch (const std::exception& e)
     {
         FatalErrorInFunction
             << config_.file.c_str() << ": dem.script: " << e.what() << exit(FatalError);
+    }
+    for (const std::string& name : dem_->unresumable_outputs())
+    {
+        if (checkpoint_.resuming())
+        {
+            Info<< "TFDEM warning: " << name.c_str() << ": an output named by a pattern or a"
+                << " variable is not cut back to the checkpoint (files written after it by"
+                << " the stopped run stay until written again)" << endl;
+        }
     }
     Info<< "TFDEM coupling: " << dem_->global_count() << " particles, DEM step "
         << dem_->time_step() << " s, " << config_.coupling_interval
@@ -316,15 +326,11 @@ void Foam::TfdemCoupling::gasSolved()
 }
 
 
-void Foam::TfdemCoupling::write()
+void Foam::TfdemCoupling::write(bool gasWritten)
 {
-    if (!mesh_.time().writeTime())
-    {
-        return;
-    }
     const Clock::time_point start = Clock::now();
     outlets_->write(mesh_.time());
-    checkpoint_.write(*dem_, accounting_->totals());
+    checkpoint_.write(*dem_, accounting_->totals(), gasWritten);
     report_.addSeconds(TfdemRunReport::Part::checkpoint, secondsSince(start));
 }
 

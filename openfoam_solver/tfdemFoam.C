@@ -21,9 +21,11 @@ Description
 #include "fvCFD.H"
 #include "pimpleControl.H"
 #include "fvOptions.H"
+#include "tfdemCase.H"
 #include "tfdemCoupling.H"
 #include "tfdemRanks.H"
 #include "tfdemStartupChecks.H"
+#include "tfdemTime.H"
 
 #include <chrono>
 
@@ -44,12 +46,21 @@ int main(int argc, char *argv[])
 
     #include "postProcess.H"
 
+    TfdemCase::checkArguments(argc, argv);
     TfdemRanks::start(argc, argv);
 
     #include "addCheckCaseOptions.H"
     #include "setRootCaseLists.H"
-    #include "createTime.H"
+    TfdemCase::checkControlDict(args);
+    const fileName forceRecordFile
+    (
+        TfdemCase::absolute(args.getOrDefault<fileName>("recordForces", fileName()))
+    );
+
+    Info<< "Create time\n" << endl;
+    TfdemTime runTime(Time::controlDictName, args);
     TfdemRanks::checkTime(runTime);
+    const TfdemCase tfdemCase(runTime);
     #include "createMesh.H"
     #include "createControl.H"
     #include "createTimeControls.H"
@@ -100,14 +111,25 @@ int main(int argc, char *argv[])
             coupling->gasSolved();
         }
 
-        if (TfdemRanks::writesGas())
+        if (runTime.writeTime())
         {
-            runTime.write();
+            if (coupling.valid())
+            {
+                coupling->checkDiskSpace();
+            }
+            const bool written = !TfdemRanks::writesGas() || runTime.write();
+            if (coupling.valid())
+            {
+                coupling->write(written);
+            }
+            else
+            {
+                TfdemCase::written(runTime, written, "Its fields were not written whole.");
+            }
         }
 
         if (coupling.valid())
         {
-            coupling->write();
             coupling->progress(CoNum);
         }
 

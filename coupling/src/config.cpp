@@ -7,6 +7,7 @@
 #include <fstream>
 #include <limits>
 #include <sstream>
+#include <type_traits>
 
 #include "tfdem/suggest.h"
 
@@ -24,11 +25,50 @@ std::string location(const std::string &file, const YAML::Mark &mark) {
   return file + ":" + std::to_string(mark.line + 1) + ":" + std::to_string(mark.column + 1);
 }
 
+// NaN, tested without comparing it: under OpenFOAM's floating-point trap an ordered
+// comparison with NaN stops the process (SIGFPE)
+template <typename T>
+bool not_a_number(T v) {
+  if constexpr (std::is_floating_point_v<T>) return std::isnan(v);
+  return false;
+}
+
 template <typename T>
 std::string format_number(T v) {
   std::ostringstream s;
   s << v;
   return s.str();
+}
+
+// Lines where a quote opens and does not close: YAML would take the lines after it into the
+// value (a file name swallowing the rest of the file). No TFDEM value spans lines. A single
+// quote counts only where it opens a value (an apostrophe inside a plain value is text).
+std::vector<std::string> unclosed_quotes(const std::string &file, const std::string &text) {
+  std::vector<std::string> problems;
+  std::istringstream in(text);
+  int number = 0;
+  for (std::string line; std::getline(in, line);) {
+    ++number;
+    char open = 0;
+    for (std::size_t i = 0; i < line.size(); ++i) {
+      const char c = line[i];
+      if (open == 0 && c == '#' && (i == 0 || line[i - 1] == ' ' || line[i - 1] == '\t')) break;
+      if (open == '"' && c == '\\') {
+        ++i;
+      } else if (open == 0 && (c == '"' || c == '\'')) {
+        const std::size_t before = i == 0 ? std::string::npos : line.find_last_not_of(" \t", i - 1);
+        const bool opens_value = before == std::string::npos || std::string(":-[{,").find(line[before]) != std::string::npos;
+        if (opens_value) open = c;
+      } else if (c == open) {
+        open = 0;
+      }
+    }
+    if (open)
+      problems.push_back(file + ":" + std::to_string(number) + ": a quote (" + open +
+                         ") opens here and is not closed on this line: YAML would take the lines after it into the "
+                         "value; close the quote");
+  }
+  return problems;
 }
 
 }  // namespace
@@ -38,6 +78,12 @@ ConfigError::ConfigError(const std::vector<std::string> &problems)
 
 ConfigSection::ConfigSection(const std::string &file, const std::string &text, std::vector<std::string> &problems)
     : file_(file), node_(std::make_unique<YAML::Node>()), problems_(&problems) {
+  const std::vector<std::string> quotes = unclosed_quotes(file, text);
+  if (!quotes.empty()) {
+    problems.insert(problems.end(), quotes.begin(), quotes.end());
+    *node_ = YAML::Node(YAML::NodeType::Map);
+    return;
+  }
   try {
     *node_ = YAML::Load(text);
   } catch (const YAML::ParserException &e) {
@@ -111,6 +157,10 @@ T ConfigSection::scalar(const std::string &key, T fallback, T min, T max, bool r
                      (value->IsScalar() ? value->Scalar() : std::string("a collection")) + "'");
     return fallback;
   }
+  if (not_a_number(v)) {
+    problem(key, "must be a number, got '" + value->Scalar() + "' (not a number)");
+    return fallback;
+  }
   if (!(v >= min && v <= max)) {
     problem(key, "value " + format_number(v) + " is out of range [" + format_number(min) + ", " + format_number(max) + "]");
     return fallback;
@@ -158,6 +208,10 @@ std::vector<double> ConfigSection::number_list(const std::string &key, double mi
     } catch (const YAML::Exception &) {
       problem(key, "must be a number or a list of numbers, got '" +
                        (item.IsScalar() ? item.Scalar() : std::string("a collection")) + "'");
+      return;
+    }
+    if (not_a_number(v)) {
+      problem(key, "must be a number or a list of numbers, got '" + item.Scalar() + "' (not a number)");
       return;
     }
     if (v >= min && v <= max)
@@ -255,6 +309,9 @@ CouplingConfig parse_coupling_config(const std::string &file, const std::string 
   particles.reject_unknown_keys();
   ConfigSection dem = root.section("dem", true);
   c.dem_script = dem.text("script", "", true);
+  if (root.has("dem") && !dem.has("coupling_interval"))
+    dem.report("coupling_interval", "missing (required): the DEM steps per gas step, system/controlDict deltaT "
+                                    "divided by the DEM script's timestep");
   c.coupling_interval = dem.integer("coupling_interval", 1, 1, 1000000);
   c.outlets = dem.text_list("outlets");
   dem.reject_unknown_keys();

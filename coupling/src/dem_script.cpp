@@ -1,5 +1,6 @@
 #include "tfdem/dem_script.h"
 
+#include <algorithm>
 #include <sstream>
 #include <stdexcept>
 
@@ -58,13 +59,66 @@ std::string joined(const std::vector<std::string> &words) {
   return text;
 }
 
+bool uses_variable(const std::string &name) { return name.find('$') != std::string::npos; }
+
+// Appends the commands of `file` (and of what it includes) to `script`; `open` holds the
+// files being read, outermost first, to refuse a cycle.
+void load_into(Script &script, const std::string &file, const std::string &text, const ReadFile &read,
+               std::vector<std::string> &open) {
+  open.push_back(file);
+  for (Command &c : parse(text, file)) {
+    if (c.words[0] != "include") {
+      script.commands.push_back(std::move(c));
+      continue;
+    }
+    if (c.words.size() != 2) {
+      script.problems.push_back(c.where() + "'include' takes one file name");
+      continue;
+    }
+    const std::string &name = c.words[1];
+    if (uses_variable(name)) {
+      script.problems.push_back(c.where() + "include '" + name + "': the coupler checks and resumes what a script " +
+                                "includes, and cannot know a name made of variables; write the file name itself");
+    } else if (std::find(open.begin(), open.end(), name) != open.end()) {
+      script.problems.push_back(c.where() + "include '" + name + "' includes itself (through " + joined(open) +
+                                "); LIGGGHTS would read it forever: remove the cycle");
+    } else {
+      try {
+        load_into(script, name, read(name), read, open);
+      } catch (const std::runtime_error &e) {
+        script.problems.push_back(c.where() + "include '" + name + "': " + e.what());
+      }
+    }
+  }
+  open.pop_back();
+}
+
+// The value after keyword `key` from word `from` on, or "" when absent.
+std::string keyword_value(const Command &c, std::size_t from, const std::string &key) {
+  for (std::size_t k = from; k + 1 < c.words.size(); ++k)
+    if (c.words[k] == key) return c.words[k + 1];
+  return "";
+}
+
+long whole_number(const Command &c, std::size_t k) {
+  if (k >= c.words.size()) return 0;
+  try {
+    return std::stol(c.words[k]);
+  } catch (const std::exception &) {
+    return 0;  // a variable: LIGGGHTS checks it
+  }
+}
+
 }  // namespace
 
-std::vector<Command> parse(const std::string &text) {
+std::string Command::where() const { return (file.empty() ? "" : file + ":") + std::to_string(line) + ": "; }
+
+std::vector<Command> parse(const std::string &text, const std::string &file) {
   const std::vector<std::string> lines = split_lines(text);
   std::vector<Command> commands;
   for (std::size_t i = 0; i < lines.size();) {
     Command c;
+    c.file = file;
     c.line = static_cast<int>(i) + 1;
     std::string joined_text;
     bool more = true;
@@ -80,58 +134,116 @@ std::vector<Command> parse(const std::string &text) {
   return commands;
 }
 
-std::vector<std::string> coupled_script_problems(const std::string &file, const std::vector<Command> &commands) {
-  std::vector<std::string> problems;
-  std::vector<int> coupling_fix_lines;
-  for (const Command &c : commands) {
+const Command *Script::first(const std::string &name) const {
+  for (const Command &c : commands)
+    if (c.words[0] == name) return &c;
+  return nullptr;
+}
+
+Script load(const std::string &file, const ReadFile &read) {
+  Script script;
+  std::vector<std::string> open;
+  load_into(script, file, read(file), read, open);
+  return script;
+}
+
+std::vector<std::string> coupled_script_problems(const std::string &file, const Script &script) {
+  std::vector<std::string> problems = script.problems;
+  std::vector<std::string> coupling_fixes;
+  for (const Command &c : script.commands) {
     const std::string &name = c.words[0];
-    const std::string at = file + ":" + std::to_string(c.line) + ": ";
     if (name == "run" || name == "rerun" || name == "minimize")
-      problems.push_back(at + "'" + name + "' in a coupled DEM script: the coupler advances the DEM one coupling " +
-                         "interval at a time and its clock would run ahead of the gas; remove the command");
-    if (name == "clear")
-      problems.push_back(at + "'clear' drops TFDEM's fix styles from LIGGGHTS; remove the command");
-    if (is_coupling_fix(c)) coupling_fix_lines.push_back(c.line);
+      problems.push_back(c.where() + "'" + name + "' in a coupled DEM script: the coupler advances the DEM one " +
+                         "coupling interval at a time and its clock would run ahead of the gas; remove the command");
+    if (name == "clear") problems.push_back(c.where() + "'clear' drops TFDEM's fix styles from LIGGGHTS; remove the command");
+    if (name == "jump")
+      problems.push_back(c.where() + "'jump' in a coupled DEM script: the coupler cannot check or resume what it " +
+                         "jumps to, and a coupled script has no loop to run; use 'include' for another file");
+    if (is_coupling_fix(c)) coupling_fixes.push_back(c.where().substr(0, c.where().size() - 2));
   }
-  if (coupling_fix_lines.empty())
-    problems.push_back(file + ": no 'fix ID all tfdem/coupling': the coupler cannot apply fluid forces; add one");
-  if (coupling_fix_lines.size() > 1) {
-    std::string lines;
-    for (const int l : coupling_fix_lines) lines += (lines.empty() ? "" : ", ") + std::to_string(l);
-    problems.push_back(file + ": " + std::to_string(coupling_fix_lines.size()) +
-                       " 'fix ... tfdem/coupling' (lines " + lines +
+  if (coupling_fixes.empty())
+    problems.push_back(file + ": no 'fix ID all tfdem/coupling' (in it or in what it includes): the coupler cannot " +
+                       "apply fluid forces; add one");
+  if (coupling_fixes.size() > 1) {
+    std::string at;
+    for (const std::string &w : coupling_fixes) at += (at.empty() ? "" : ", ") + w;
+    problems.push_back(file + ": " + std::to_string(coupling_fixes.size()) + " 'fix ... tfdem/coupling' (" + at +
                        "): each would apply the fluid force again; keep exactly one");
   }
   return problems;
 }
 
-std::string resumed_script(const std::string &file, const std::string &text, const std::string &restart_file) {
-  std::vector<std::string> lines = split_lines(text);
-  std::vector<std::string> appended;
-  int read_data = 0;
-  const auto replace = [&lines](const Command &c, const std::string &command) {
-    lines[c.line - 1] = command;
-    for (int k = 1; k < c.line_count; ++k) lines[c.line - 1 + k].clear();
+std::vector<OutputFile> output_files(const Script &script, std::vector<std::string> *skipped) {
+  std::vector<OutputFile> files;
+  const auto add = [&](OutputFile f, const Command &c) {
+    if (f.path.empty()) return;
+    if (uses_variable(f.path) || f.path.find_first_of("*%") != std::string::npos) {
+      if (skipped) skipped->push_back(c.where() + f.path);
+      return;
+    }
+    f.where = c.where();
+    files.push_back(f);
   };
-  for (Command c : parse(text)) {
-    if (c.words[0] == "read_data") {
-      ++read_data;
-      replace(c, "read_restart " + restart_file);
-    } else if (c.words.size() >= 4 && c.words[0] == "fix" && c.words[3] == "print") {
-      for (std::size_t k = 5; k < c.words.size(); ++k)
-        if (c.words[k] == "file") c.words[k] = "append";
-      replace(c, joined(c.words));
-    } else if (c.words[0] == "dump" && c.words.size() >= 2) {
-      appended.push_back("dump_modify " + c.words[1] + " append yes");
+  for (const Command &c : script.commands) {
+    const std::vector<std::string> &w = c.words;
+    OutputFile f;
+    if (w[0] == "fix" && w.size() >= 4) {
+      f.id = w[1];
+      if (w[3] == "print") {
+        f.kind = OutputFile::Kind::Print;
+        f.every = whole_number(c, 4);
+        f.path = keyword_value(c, 5, "file");
+        if (f.path.empty()) f.path = keyword_value(c, 5, "append");
+        add(f, c);
+      } else if (w[3].compare(0, 4, "ave/") == 0) {
+        f.kind = OutputFile::Kind::Average;
+        f.every = whole_number(c, 4);
+        f.repeat = whole_number(c, 5);
+        f.frequency = whole_number(c, 6);
+        f.path = keyword_value(c, 4, "file");
+        add(f, c);
+      }
+    } else if (w[0] == "dump" && w.size() >= 6) {
+      f.kind = OutputFile::Kind::Dump;
+      f.id = w[1];
+      f.every = whole_number(c, 4);
+      f.path = w[5];
+      add(f, c);
     }
   }
-  if (read_data != 1)
-    throw std::invalid_argument(file + ": resuming needs exactly one 'read_data' (the coupler replaces it by " +
-                                "'read_restart " + restart_file + "'); the script has " +
-                                std::to_string(read_data));
-  std::string out;
-  for (const std::string &l : lines) out += l + "\n";
-  if (!appended.empty()) out += "# added by the coupler on restart: outputs continue\n";
+  return files;
+}
+
+std::string resumed_script(const std::string &file, const Script &script, const std::string &restart_file) {
+  // Commands that make the box, and those that make or change particles: the restart file
+  // holds both
+  const std::vector<std::string> box = {"read_data", "create_box"};
+  const std::vector<std::string> particles = {"create_atoms", "set", "velocity", "displace_atoms", "delete_atoms",
+                                              "read_dump"};
+  const auto is = [](const std::vector<std::string> &names, const std::string &name) {
+    return std::find(names.begin(), names.end(), name) != names.end();
+  };
+  std::string out = "# " + file + " flattened and resumed from " + restart_file + " by the coupler\n";
+  std::vector<std::string> appended;
+  int boxes = 0;
+  for (const Command &c : script.commands) {
+    out += "# " + c.where().substr(0, c.where().size() - 1) + "\n";
+    if (is(box, c.words[0])) {
+      ++boxes;
+      out += "read_restart " + restart_file + "\n";
+    } else if (is(particles, c.words[0])) {
+      out += "# dropped: the particles come from the restart file: " + joined(c.words) + "\n";
+    } else {
+      out += joined(c.words) + "\n";
+    }
+  }
+  for (const OutputFile &f : output_files(script))
+    if (f.kind == OutputFile::Kind::Dump) appended.push_back("dump_modify " + f.id + " append yes");
+  if (boxes != 1)
+    throw std::invalid_argument(file + ": resuming needs exactly one 'read_data' or 'create_box' (the coupler " +
+                                "replaces it by 'read_restart " + restart_file + "'); the script has " +
+                                std::to_string(boxes));
+  if (!appended.empty()) out += "# added by the coupler on restart: dumps continue their files\n";
   for (const std::string &l : appended) out += l + "\n";
   return out;
 }

@@ -131,7 +131,7 @@ DEM = [
      ["in.settling:31: 'run' in a coupled DEM script", "remove the command"]),
     ("clear in the DEM script", dem_append("clear\n"), ["'clear' drops TFDEM's fix styles"]),
     ("two coupling fixes", dem_append("fix fluid2 all tfdem/coupling\n"),
-     ["2 'fix ... tfdem/coupling' (lines 26, 31)", "keep exactly one"]),
+     ["2 'fix ... tfdem/coupling' (in.settling:26, in.settling:31)", "keep exactly one"]),
     ("no coupling fix", dem("fix             fluid all tfdem/coupling", ""), ["no 'fix ID all tfdem/coupling'"]),
     ("gravity disagrees with constant/g", dem("gravity 9.81 vector 0 -1 0", "gravity 9.7 vector 0 -1 0"),
      ["gravity disagrees", "(0 -9.7 0)"]),

@@ -1,6 +1,7 @@
 // coupling.yaml parsing: every problem reported at once with file, line, key path and fix.
 #include <gtest/gtest.h>
 
+#include <cfenv>
 #include <fstream>
 
 #include "tfdem/config.h"
@@ -120,6 +121,36 @@ TEST(Config, OutOfRangeValuesAreReported) {
   EXPECT_TRUE(contains(p, "coupling.void_fraction.floor: value 1 leaves no room for particles"));
   const auto q = problems_of(replaced(kValid, "cube_factor: 1.2", "cube_factor: 0.7"));
   EXPECT_TRUE(contains(q, "coupling.void_fraction.cube_factor: value 0.7 is out of range [0.805996")) << q[0];
+}
+
+// .nan in any number is refused by name; checked with the floating-point trap OpenFOAM runs
+// under (FOAM_SIGFPE), where comparing a NaN stops the process.
+TEST(Config, NotANumberIsRefusedUnderTheTrap) {
+  feenableexcept(FE_INVALID | FE_DIVBYZERO | FE_OVERFLOW);
+  const auto p = problems_of(replaced(replaced(kValid, "density: 2526", "density: .nan"), "diameter: 0.0025",
+                                      "diameter: [0.002, .NaN]"));
+  fedisableexcept(FE_INVALID | FE_DIVBYZERO | FE_OVERFLOW);
+  ASSERT_EQ(p.size(), 2u);
+  EXPECT_TRUE(contains(p, "particles.diameter: must be a number or a list of numbers, got '.NaN' (not a number)")) << p[0];
+  EXPECT_TRUE(contains(p, "particles.density: must be a number, got '.nan' (not a number)")) << p[1];
+}
+
+TEST(Config, UnclosedQuoteIsNamed) {
+  const auto p = problems_of(replaced(kValid, "script: in.bed", "script: \"in.bed"));
+  ASSERT_EQ(p.size(), 1u);
+  EXPECT_TRUE(contains(p, "case/coupling.yaml:8: a quote (\") opens here and is not closed")) << p[0];
+  const auto q = problems_of(replaced(kValid, "script: in.bed", "script: 'in.bed"));
+  ASSERT_EQ(q.size(), 1u);
+  EXPECT_TRUE(contains(q, "case/coupling.yaml:8: a quote (') opens here")) << q[0];
+  // quotes that close, an apostrophe inside a plain value and quotes in comments are fine
+  EXPECT_TRUE(problems_of(replaced(kValid, "script: in.bed", "script: \"in.bed\"  # it's \"quoted\"")).empty());
+  EXPECT_TRUE(problems_of(replaced(kValid, "script: in.bed", "script: bed's.in")).empty());
+}
+
+TEST(Config, CouplingIntervalIsRequired) {
+  const auto p = problems_of(replaced(kValid, "  coupling_interval: 50\n", ""));
+  ASSERT_EQ(p.size(), 1u);
+  EXPECT_TRUE(contains(p, "dem.coupling_interval: missing (required): the DEM steps per gas step")) << p[0];
 }
 
 TEST(Config, UnknownChoicesListValidOnes) {
