@@ -31,6 +31,7 @@
 #include "lammps.h"
 #include "modify.h"
 #include "output.h"
+#include "tfdem/data_file.h"
 #include "tfdem/dem_script.h"
 #include "tfdem_liggghts.h"
 #include "universe.h"
@@ -195,6 +196,9 @@ DemInstance::DemInstance(MPI_Comm comm, const std::string &script, const std::st
       fix_ = static_cast<LAMMPS_NS::FixTfdemCoupling *>(lmp_->modify->fix[i]);
   if (!fix_) throw std::runtime_error("DEM input script '" + script + "' defined no 'fix ID all tfdem/coupling'");
   if (!resume) return;
+  command("print \"TFDEM: the DEM resumes from " +
+          (resume->restart_file.empty() ? std::string("an emptied bed") : resume->restart_file) + " at step " +
+          std::to_string(resume->step) + "\"");
   if (resume->restart_file.empty()) {  // the bed had emptied: the script's set-up, no particles
     command("delete_atoms group all compress no");
     command("reset_timestep " + std::to_string(resume->step));
@@ -212,6 +216,7 @@ std::string DemInstance::script_to_run(const std::string &script, const DemResum
   for (const std::string &p : dem_script::coupled_script_problems(script, parsed)) problems += "\n  " + p;
   if (!problems.empty()) throw std::runtime_error("the DEM input script cannot be coupled:" + problems);
   outputs_ = dem_script::output_files(parsed, &unresumable_outputs_);
+  if (!resume) check_data_file(parsed);
   if (!resume || resume->restart_file.empty()) return script;
   std::string resumed;
   try {
@@ -229,6 +234,37 @@ std::string DemInstance::script_to_run(const std::string &script, const DemResum
   }
   throw_on_every_rank(comm_, problem);
   return path;
+}
+
+void DemInstance::check_data_file(const dem_script::Script &script) const {
+  const dem_script::Command *read = script.first("read_data");
+  const dem_script::Command *style = script.first("atom_style");
+  if (!read || read->words.size() < 2 || read->words[1].find('$') != std::string::npos) return;
+  if (!style || style->words.size() < 2 || (style->words[1] != "granular" && style->words[1] != "sphere")) return;
+  if (rank_of(comm_) != 0) return;  // LIGGGHTS' own message on the other ranks would be the same
+  const std::string &file = read->words[1];
+  std::ifstream in(file);
+  if (!in) return;  // LIGGGHTS names it
+  std::stringstream text;
+  text << in.rdbuf();
+  data_file::Boundary boundary;
+  const dem_script::Command *sides = script.first("boundary");
+  std::size_t count = 0;
+  std::vector<std::string> outside;
+  try {
+    if (sides) boundary = data_file::boundary_from_words({sides->words.begin() + 1, sides->words.end()});
+    outside = data_file::atoms_outside_box(text.str(), file, boundary, 10, count);
+  } catch (const std::invalid_argument &e) {
+    throw std::runtime_error(read->where() + e.what());
+  }
+  if (count == 0) return;
+  std::string list;
+  for (const std::string &o : outside) list += "\n  " + o;
+  if (count > outside.size()) list += "\n  and " + std::to_string(count - outside.size()) + " more";
+  throw std::runtime_error(read->where() + file + ": " + std::to_string(count) + " atom(s) LIGGGHTS cannot place " +
+                           "(it would stop with 'Did not assign all atoms correctly'):" + list +
+                           "\nFix: move them inside the box of the file's header, widen the box (xlo xhi ... lines), " +
+                           "or make that side periodic or shrink-wrapped (boundary p, s or m)");
 }
 
 void DemInstance::prepare_outputs(const DemResume &resume) {
@@ -289,7 +325,10 @@ DemInstance::~DemInstance() {
 }
 
 void DemInstance::run(long steps, bool sample_contacts) {
-  if (global_count() == 0 && !inserts_particles()) return;  // LIGGGHTS 3.8.0 cannot run empty
+  if (global_count() == 0 && !inserts_particles()) {  // LIGGGHTS 3.8.0 cannot run empty:
+    lmp_->update->reset_timestep(lmp_->update->ntimestep + steps);  // its clock goes on with the gas
+    return;
+  }
   fix_->sample_contacts_at(sample_contacts ? lmp_->update->ntimestep + steps : -1);
   const std::string line = "run " + std::to_string(steps) + (set_up_ ? " pre no post no" : " post no");
   lmp_->input->one(line.c_str());

@@ -56,7 +56,8 @@ class DemInstance {
   // Advance `steps` DEM steps (LIGGGHTS `run`; set-up only the first time and after a
   // restart file was written). With `sample_contacts`, the fix records every particle's
   // contact force and N_c at the last step. With no particles and no insertion fix there is
-  // nothing to advance (and LIGGGHTS 3.8.0 stops with "Atom types must start from 1").
+  // nothing to advance (and LIGGGHTS 3.8.0 stops with "Atom types must start from 1"): only
+  // the DEM clock moves on.
   void run(long steps, bool sample_contacts = false);
   // Write a LIGGGHTS restart file (particles, contact histories, held fluid forces) to
   // `path`, whole or not at all: written as path + ".tmp", read back (its header and every
@@ -133,6 +134,9 @@ class DemInstance {
  private:
   // The text LIGGGHTS runs: the script checked, flattened and resumed when resuming.
   std::string script_to_run(const std::string &script, const DemResume *resume);
+  // A fresh start's read_data file (atom_style sphere or granular): every atom inside the box
+  // on the sides that drop atoms and finite (throws naming them; LIGGGHTS would not).
+  void check_data_file(const dem_script::Script &script) const;
   // Resuming: dumps cut back to their checkpoint sizes; fix print and ave/* files set aside
   // (their fixes open them anew), to be continued by continue_outputs().
   void prepare_outputs(const DemResume &resume);

@@ -121,7 +121,9 @@ void Foam::TfdemCase::checkArguments(int argc, char* argv[])
     const bool given = !casePath.empty();
     if (!given)
     {
-        casePath = cwd();
+        // not Foam::cwd(): a fileName strips the very characters this check is about
+        char here[4096];
+        casePath = ::getcwd(here, sizeof here) ? here : "";
     }
     const char c = strippedCharacter(casePath);
     if (c)
@@ -151,14 +153,20 @@ void Foam::TfdemCase::checkControlDict(const argList& args)
     const bool hasInterval =
         control.readIfPresent("writeInterval", interval)
      || control.readIfPresent("writeFrequency", interval);
-    if (!hasInterval || !std::isfinite(interval) || !(interval > 0))
+    const bool steps = writeControl == "timeStep";
+    if
+    (
+        !hasInterval || !std::isfinite(interval) || !(interval > 0)
+     || (steps && (interval < 1 || interval != std::round(interval)))
+    )
     {
         FatalIOErrorInFunction(control)
-            << "writeInterval " << (hasInterval ? std::to_string(interval).c_str() : "missing")
-            << " (writeControl " << writeControl << "): it must be positive. The gas fields"
-            << " and the joint checkpoints are written every writeInterval ("
-            << (writeControl == "timeStep" ? "steps" : "seconds of simulated time")
-            << "); to write only at the end, set writeInterval to the run's length"
+            << "writeInterval " << (hasInterval ? Foam::name(interval).c_str() : "missing")
+            << " (writeControl " << writeControl << "): it must be "
+            << (steps ? "a whole number of steps, at least 1" : "positive") << ". The gas"
+            << " fields and the joint checkpoints are written every writeInterval ("
+            << (steps ? "steps" : "seconds of simulated time") << "); to write only at the"
+            << " end, set writeInterval to the run's length"
             << exit(FatalIOError);
     }
     scalar deltaT = 0;
@@ -167,6 +175,17 @@ void Foam::TfdemCase::checkControlDict(const argList& args)
         FatalIOErrorInFunction(control)
             << "deltaT must be a positive time step (s)" << exit(FatalIOError);
     }
+}
+
+
+void Foam::TfdemCase::messagePrecision(unsigned digits)
+{
+    Sout.precision(digits);
+    Serr.precision(digits);
+    Pout.precision(digits);
+    Perr.precision(digits);
+    FatalError().precision(digits);
+    FatalIOError.error::operator()().precision(digits);
 }
 
 

@@ -1,5 +1,6 @@
 #include "tfdemCheckpoint.H"
 #include "tfdemCase.H"
+#include "tfdemFailure.H"
 #include "tfdemRanks.H"
 #include "tfdemTime.H"
 #include "OSspecific.H"
@@ -346,6 +347,7 @@ void Foam::TfdemCheckpoint::readStart(const wordList& marked)
     }
     resuming_ = true;
     lastGood_ = start;
+    tfdemFailure::checkpointWritten(start);
     for (const auto& f : start_.files)
     {
         lastBytes_ += f.digest.size;
@@ -615,6 +617,7 @@ void Foam::TfdemCheckpoint::write
         stopped
     );
     lastGood_ = t;
+    tfdemFailure::checkpointWritten(t);
     written_.push_back(t);
     purge();
 }

@@ -9,12 +9,12 @@
 
 #include "dem_instance.h"
 #include "tfdem/distributed_coupling.h"
+#include "tfdemFailure.H"
 #include "tfdemOutlets.H"
 #include "tfdemParticleAccounting.H"
 #include "tfdemRanks.H"
 #include "tfdemStartupChecks.H"
 #include "tfdemStatistics.H"
-#include "tfdemTime.H"
 
 namespace
 {
@@ -42,7 +42,7 @@ const double* flatComponents(const Foam::volVectorField& field)
 
 Foam::TfdemCoupling::TfdemCoupling
 (
-    TfdemTime& runTime,
+    TfdemCheckpoint& checkpoint,
     const fvMesh& mesh,
     const volVectorField& pressureGradient,
     const volVectorField& gasVelocity,
@@ -61,7 +61,7 @@ Foam::TfdemCoupling::TfdemCoupling
     voidFraction_(voidFraction),
     exchangeCoefficient_(exchangeCoefficient),
     solidVelocity_(solidVelocity),
-    checkpoint_(runTime),
+    checkpoint_(checkpoint),
     report_(mesh.time()),
     forceRecord_(forceRecordFile)
 {
@@ -93,10 +93,17 @@ Foam::TfdemCoupling::TfdemCoupling
     );
     startDem();
     tfdemChecks::particles(config_, *dem_);
+    tfdemChecks::packing(*dem_, g.value(), !checkpoint_.resuming());
     tfdemChecks::gravity(g, *dem_);
     tfdemChecks::timeSteps(mesh.time(), config_, *dem_, gasVelocity, g.value());
     tfdemChecks::scene(config_, grid_.grid, *dem_, gasVelocity, g.value());
-    outlets_.reset(new TfdemOutlets(mesh, config_.outlets, configFile));
+    outlets_.reset
+    (
+        new TfdemOutlets
+        (
+            mesh, config_.outlets, configFile, *dem_, config_.particle_diameters.back()
+        )
+    );
     accounting_.reset
     (
         new TfdemParticleAccounting(*dem_, checkpoint_.startTotals(), mesh.time().value())
@@ -189,7 +196,9 @@ void Foam::TfdemCoupling::evolve()
     const Time& runTime = mesh_.time();
     Clock::time_point start = Clock::now();
     const bool recordContacts = statistics_->due(runTime);
+    tfdemFailure::enter(tfdemFailure::Phase::dem, runTime.value());
     dem_->run(config_.coupling_interval, recordContacts);
+    tfdemFailure::enter(tfdemFailure::Phase::coupling, runTime.value());
     const TfdemOutlets::Removed removed = outlets_->remove(*dem_);
     accounting_->check(*dem_, runTime.value(), removed.tags, removed.mass, demLog() + ".screen");
     report_.addSeconds(TfdemRunReport::Part::dem, secondsSince(start));

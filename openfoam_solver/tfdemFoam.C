@@ -23,6 +23,7 @@ Description
 #include "fvOptions.H"
 #include "tfdemCase.H"
 #include "tfdemCoupling.H"
+#include "tfdemFailure.H"
 #include "tfdemRanks.H"
 #include "tfdemStartupChecks.H"
 #include "tfdemTime.H"
@@ -51,6 +52,7 @@ int main(int argc, char *argv[])
 
     #include "addCheckCaseOptions.H"
     #include "setRootCaseLists.H"
+    tfdemFailure::install();
     TfdemCase::checkControlDict(args);
     const fileName forceRecordFile
     (
@@ -59,8 +61,14 @@ int main(int argc, char *argv[])
 
     Info<< "Create time\n" << endl;
     TfdemTime runTime(Time::controlDictName, args);
+    TfdemCase::messagePrecision(10);
     TfdemRanks::checkTime(runTime);
     const TfdemCase tfdemCase(runTime);
+    // A coupled run's start time verified (or refused) before any field of it is read
+    autoPtr<TfdemCheckpoint> checkpoint
+    (
+        TfdemCase::coupled(runTime) ? new TfdemCheckpoint(runTime) : nullptr
+    );
     #include "createMesh.H"
     #include "createControl.H"
     #include "createTimeControls.H"
@@ -84,11 +92,13 @@ int main(int argc, char *argv[])
         if (coupling.valid())
         {
             coupling->evolve();
+            tfdemFailure::enter(tfdemFailure::Phase::coupling, runTime.value());
             voidFractionf = fvc::interpolate(voidFraction);
             voidFractionPhi = voidFractionf*phi;
         }
 
         const auto gasStart = std::chrono::steady_clock::now();
+        tfdemFailure::enter(tfdemFailure::Phase::gas, runTime.value());
         while (pimple.loop())
         {
             #include "UEqn.H"
@@ -113,6 +123,7 @@ int main(int argc, char *argv[])
 
         if (runTime.writeTime())
         {
+            tfdemFailure::enter(tfdemFailure::Phase::writing, runTime.value());
             if (coupling.valid())
             {
                 coupling->checkDiskSpace();

@@ -64,9 +64,10 @@ void Foam::TfdemForceRecord::report(const tfdem::DemInstance& dem) const
         positionSum[i % 3] += dem.positions()[i];
     }
     MPI_Allreduce(MPI_IN_PLACE, positionSum, 3, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
-    Info<< "TFDEM positions: sum of x, y, z over particles = "
-        << setprecision(17) << positionSum[0] << " " << positionSum[1] << " "
-        << positionSum[2] << setprecision(IOstream::defaultPrecision()) << endl;
+    const int digits = Info().precision(17);  // compared bit for bit with the replay
+    Info<< "TFDEM positions: sum of x, y, z over particles = " << positionSum[0] << " "
+        << positionSum[1] << " " << positionSum[2] << endl;
+    Info().precision(digits);
     if (out_.is_open())
     {
         Info<< "TFDEM record: forces written in "

@@ -11,9 +11,12 @@ Foam::TfdemOutlets::TfdemOutlets
 (
     const fvMesh& mesh,
     const std::vector<std::string>& names,
-    const fileName& config
+    const fileName& config,
+    const tfdem::DemInstance& dem,
+    double reach
 )
 {
+    const tfdem::DemInstance::Box box = dem.box();
     const boundBox domain(mesh.points(), true);
     std::vector<std::string> patchNames;
     for (const polyPatch& p : mesh.boundaryMesh())
@@ -58,6 +61,19 @@ Foam::TfdemOutlets::TfdemOutlets
             FatalErrorInFunction
                 << config << ": dem.outlets: patch '" << name.c_str() << "' is not flat on a face of"
                 << " the domain; particles can leave through such patches only"
+                << exit(FatalError);
+        }
+        const int side = o.side > 0 ? 1 : 0;
+        const double face = o.side > 0 ? box.upper[o.axis] : box.lower[o.axis];
+        if (box.drops[o.axis][side] && (face - o.position)*o.side < reach)
+        {
+            FatalErrorInFunction
+                << config << ": dem.outlets: patch '" << name.c_str() << "' lies at "
+                << "xyz"[o.axis] << " = " << o.position << " m, but the DEM's box ends at "
+                << face << " m there and drops the particles that cross it (LIGGGHTS boundary"
+                << " f): they would be lost before the coupler counts them as leaving. Fix:"
+                << " make the DEM's box reach at least one particle diameter (" << reach
+                << " m) beyond the outlet, or that side of it shrink-wrapped (boundary m)"
                 << exit(FatalError);
         }
         outlets_.push_back(o);

@@ -121,6 +121,12 @@ std::vector<int> Foam::TfdemRanks::gatherIds(const int* mine, std::size_t count)
 }
 
 
+std::vector<double> Foam::TfdemRanks::gatherDoubles(const double* mine, std::size_t count)
+{
+    return allGathered(mine, int(count), MPI_DOUBLE);
+}
+
+
 std::string Foam::TfdemRanks::gatherText(const std::string& mine)
 {
     const std::vector<char> all = allGathered(mine.data(), int(mine.size()), MPI_CHAR);

@@ -9,7 +9,9 @@
 #include <vector>
 
 #include "dem_instance.h"
+#include "tfdemRanks.H"
 #include "tfdem/contact.h"
+#include "tfdem/packing_check.h"
 #include "tfdem/particles.h"
 #include "tfdem/scene_check.h"
 
@@ -168,6 +170,141 @@ void Foam::tfdemChecks::particles
 }
 
 
+namespace
+{
+
+// Elastic energy (J) of an overlap `depth` between atom types a and b of radii ra, rb: linear
+// (1/2) k_n delta^2, Hertz (8/15) E* sqrt(R*) delta^(5/2) (the integral of the contact forces);
+// negative when the script gives neither model
+double overlapEnergy
+(
+    const tfdem::DemInstance& dem,
+    int a,
+    int b,
+    double ra,
+    double rb,
+    double depth
+)
+{
+    tfdem::DemInstance::LinearContact linear;
+    if (dem.linear_contact(a, b, linear))
+    {
+        return 0.5*linear.stiffness*depth*depth;
+    }
+    tfdem::DemInstance::HertzContact hertz;
+    if (dem.hertz_contact(a, b, hertz))
+    {
+        const double modulus = tfdem::contact::effective_modulus
+        (
+            hertz.young_a, hertz.poisson_a, hertz.young_b, hertz.poisson_b
+        );
+        return 8.0/15.0*modulus*std::sqrt(ra*rb/(ra + rb))*std::pow(depth, 2.5);
+    }
+    return -1;
+}
+
+} // End anonymous namespace
+
+
+void Foam::tfdemChecks::packing
+(
+    const tfdem::DemInstance& dem,
+    const vector& g,
+    bool freshStart
+)
+{
+    const std::size_t n = dem.local_count();
+    std::vector<double> diameter(n), own(n), mass(dem.masses(), dem.masses() + n);
+    std::vector<int> tags(dem.tags(), dem.tags() + n), types(dem.types(), dem.types() + n);
+    for (std::size_t i = 0; i < n; ++i)
+    {
+        diameter[i] = 2*dem.radii()[i];
+    }
+    const std::vector<double> x = TfdemRanks::gatherDoubles(dem.positions(), 3*n);
+    const std::vector<double> v = TfdemRanks::gatherDoubles(dem.velocities(), 3*n);
+    const std::vector<double> d = TfdemRanks::gatherDoubles(diameter.data(), n);
+    const std::vector<double> m = TfdemRanks::gatherDoubles(mass.data(), n);
+    const std::vector<int> id = TfdemRanks::gatherIds(tags.data(), n);
+    const std::vector<int> type = TfdemRanks::gatherIds(types.data(), n);
+    tfdem::ParticleView all;
+    all.count = d.size();
+    all.position = x.data();
+    all.velocity = v.data();
+    all.diameter = d.data();
+    const tfdem::PackingCheck check = tfdem::check_packing(all);
+
+    constexpr std::size_t named = 10;
+    std::ostringstream bad;
+    bad.precision(8);
+    for (std::size_t k = 0; k < std::min(named, check.not_finite.size()); ++k)
+    {
+        const std::size_t i = check.not_finite[k];
+        bad << "\n    id " << id[i] << ": position (" << x[3*i] << ' ' << x[3*i + 1] << ' '
+            << x[3*i + 2] << ") m, velocity (" << v[3*i] << ' ' << v[3*i + 1] << ' '
+            << v[3*i + 2] << ") m/s, diameter " << d[i] << " m";
+    }
+    for (std::size_t k = 0; k < std::min(named, check.coincident.size()); ++k)
+    {
+        const auto [i, j] = check.coincident[k];
+        bad << "\n    ids " << id[i] << " and " << id[j] << " both at (" << x[3*i] << ' '
+            << x[3*i + 1] << ' ' << x[3*i + 2] << ") m";
+    }
+    if (!check.not_finite.empty() || !check.coincident.empty())
+    {
+        FatalErrorInFunction
+            << "the DEM's particles cannot start: " << label(check.not_finite.size())
+            << " with a position, velocity or diameter that is not a finite number, "
+            << label(check.coincident.size()) << " pair(s) with their centres at one point"
+            << " (LIGGGHTS would divide by their distance and stop on a floating-point"
+            << " exception):" << bad.str().c_str() << "\nFix the DEM's data file or the"
+            << " commands that place the particles (a packing written twice into one file?)"
+            << exit(FatalError);
+    }
+    if (!freshStart || check.overlaps.empty())
+    {
+        return;
+    }
+    double energy = 0, lift = 0, smallest = GREAT;
+    bool known = true;
+    const tfdem::PackingCheck::Overlap* deepest = &check.overlaps.front();
+    std::size_t deep = 0;
+    for (const auto& o : check.overlaps)
+    {
+        const double relative = o.depth/std::min(d[o.a], d[o.b]);
+        if (relative > deepest->depth/std::min(d[deepest->a], d[deepest->b])) deepest = &o;
+        if (relative > 0.01) ++deep;
+        const double e = overlapEnergy(dem, type[o.a], type[o.b], 0.5*d[o.a], 0.5*d[o.b], o.depth);
+        known = known && e >= 0;
+        energy += e;
+    }
+    for (std::size_t i = 0; i < d.size(); ++i)
+    {
+        lift += m[i]*mag(g);
+        smallest = std::min(smallest, d[i]);
+    }
+    lift *= smallest;
+    const double relative = deepest->depth/std::min(d[deepest->a], d[deepest->b]);
+    Info<< "TFDEM packing: " << label(check.overlaps.size()) << " overlapping pairs, "
+        << label(deep) << " deeper than 1 % of d; deepest " << 100*relative << " % of d (ids "
+        << id[deepest->a] << " and " << id[deepest->b] << ")";
+    if (known && lift > 0)
+    {
+        Info<< "; their elastic energy " << energy << " J is " << energy/lift << " x the"
+            << " energy that lifts the whole bed by one diameter";
+    }
+    Info<< endl;
+    if (known && lift > 0 && energy > lift)
+    {
+        Info<< "TFDEM warning: the initial packing stores more elastic energy in its overlaps"
+            << " than lifting the whole bed by a particle diameter takes (" << energy/lift
+            << " x): the bed will be thrown apart as it starts, not fluidized. A packing"
+            << " squeezed into too small a box, or made with stiffer contacts than this run's?"
+            << " Pack it with this run's contacts (tfdem.packing, tutorials/poured_packing)"
+            << endl;
+    }
+}
+
+
 void Foam::tfdemChecks::gravity
 (
     const uniformDimensionedVectorField& g,
@@ -177,7 +314,7 @@ void Foam::tfdemChecks::gravity
     double demGravity[3];
     if (!dem.gravity(demGravity))
     {
-        Info<< "TFDEM coupling: the DEM script has no fix gravity: the particles feel no"
+        Info<< "TFDEM warning: the DEM script has no fix gravity: the particles feel no"
             << " weight (the gas has constant/g = " << g.value() << " m/s^2)" << endl;
         return;
     }
@@ -268,15 +405,22 @@ double largestInflowSpeed(const volVectorField& U)
     return fastest;
 }
 
-// The fastest a particle may hit another or a wall: the fastest inflow, or a free fall over
-// the domain's extent along gravity.
+// The speed of a free fall over the domain's extent along gravity: an impact any bed sees.
+double fallSpeed(const volVectorField& U, const vector& g)
+{
+    const boundBox domain(U.mesh().points(), true);
+    return mag(g) > 0 ? std::sqrt(2*mag(g)*mag(domain.span() & (g/mag(g)))) : 0;
+}
+
+// The fastest a particle may hit another or a wall: the fastest inflow, or the free fall.
 double largestImpactSpeed(const volVectorField& U, const vector& g)
 {
-    const scalar fastest = largestInflowSpeed(U);
-    const boundBox domain(U.mesh().points(), true);
-    const scalar fall = mag(g) > 0 ? std::sqrt(2*mag(g)*mag(domain.span() & (g/mag(g)))) : 0;
-    return max(fastest, fall);
+    return max(largestInflowSpeed(U), fallSpeed(U, g));
 }
+
+// Past this overlap at the free fall's impact, as a fraction of the smaller diameter, soft
+// contacts let particles pass halfway through one another
+constexpr double largestSoundImpactOverlap = 0.5;
 
 // Reduced value (1/a + 1/b)^-1 of a contact's two sides (effective mass, effective radius);
 // a type without particles is a wall (infinite mass and radius).
@@ -288,7 +432,8 @@ double reduced(double a, double b)
 }
 
 // Contact time of atom types a and b between their lightest, smallest particles and what
-// it is (for the messages); negative when the script gives no contact model we know.
+// it is (for the messages), and the deepest overlap of an elastic impact at each of
+// `speeds`; negative when the script gives no contact model we know.
 double contactTime
 (
     const tfdem::DemInstance& dem,
@@ -298,9 +443,12 @@ double contactTime
     double rEff,
     double impactSpeed,
     std::string& model,
-    double& restitution
+    double& restitution,
+    const std::vector<double>& speeds,
+    std::vector<double>& overlaps
 )
 {
+    overlaps.assign(speeds.size(), 0);
     std::ostringstream what;
     restitution = tfdem::kUnknownRestitution;
     tfdem::DemInstance::LinearContact linear;
@@ -318,6 +466,10 @@ double contactTime
         restitution = linear.damping >= 0
           ? tfdem::contact::restitution_from_damping(linear.stiffness, linear.damping, mEff)
           : linear.restitution;
+        for (std::size_t k = 0; k < speeds.size(); ++k)
+        {
+            overlaps[k] = tfdem::contact::linear_impact_overlap(linear.stiffness, mEff, speeds[k]);
+        }
         return linear.damping >= 0
           ? tfdem::contact::contact_time_from_damping(linear.stiffness, linear.damping, mEff)
           : tfdem::contact::contact_time(linear.stiffness, linear.restitution, mEff);
@@ -332,12 +484,22 @@ double contactTime
         what << "Hertz, E* = " << modulus << " Pa, R* = " << rEff << " m, m_eff = " << mEff
              << " kg, elastic at impact speed " << impactSpeed << " m/s";
         model = what.str();
+        for (std::size_t k = 0; k < speeds.size(); ++k)
+        {
+            overlaps[k] = tfdem::contact::hertz_impact_overlap(modulus, rEff, mEff, speeds[k]);
+        }
         return tfdem::contact::hertz_contact_time(modulus, rEff, mEff, impactSpeed);
     }
     return -1;
 }
 
-void contactTimeSteps(const fileName& script, const tfdem::DemInstance& dem, double impactSpeed)
+void contactTimeSteps
+(
+    const fileName& script,
+    const tfdem::DemInstance& dem,
+    double impactSpeed,
+    double fall
+)
 {
     if (!dem.integrates())
     {
@@ -360,16 +522,32 @@ void contactTimeSteps(const fileName& script, const tfdem::DemInstance& dem, dou
             }
             std::string model;
             double restitution;
+            std::vector<double> overlap;
             const double rEff = reduced(smallest[a - 1], smallest[b - 1]);
-            const double tc = contactTime(dem, a, b, mEff, rEff, impactSpeed, model, restitution);
+            const double tc = contactTime
+            (
+                dem, a, b, mEff, rEff, impactSpeed, model, restitution, {impactSpeed, fall},
+                overlap
+            );
             if (tc < 0)
             {
                 continue;
             }
             checked = true;
+            const double d = 2*std::min(smallest[a - 1], smallest[b - 1]);
             Info<< "TFDEM coupling: contact of atom types " << a << " and " << b << " ("
                 << model.c_str() << "): t_c = " << tc << " s (lightest particles), " << tc/dt
-                << " DEM steps per contact" << endl;
+                << " DEM steps per contact; deepest overlap " << 100*overlap[1]/d << " % of d at"
+                << " a free fall's impact (" << fall << " m/s), " << 100*overlap[0]/d << " % at "
+                << impactSpeed << " m/s" << endl;
+            if (overlap[1] > largestSoundImpactOverlap*d)
+            {
+                Info<< "TFDEM warning: contact of atom types " << a << " and " << b << ": a"
+                    << " particle falling " << fall << " m/s onto another sinks "
+                    << 100*overlap[1]/d << " % of its diameter into it (more than "
+                    << 100*largestSoundImpactOverlap << " %): the contacts are too soft for"
+                    << " the bed; stiffen k_n (or E)" << endl;
+            }
             const std::string problem = tfdem::dem_step_problem(tc, dt, restitution);
             if (!problem.empty())
             {
@@ -453,7 +631,10 @@ void Foam::tfdemChecks::timeSteps
     const vector& g
 )
 {
-    contactTimeSteps(runTime.globalPath()/config.dem_script, dem, largestImpactSpeed(U, g));
+    contactTimeSteps
+    (
+        runTime.globalPath()/config.dem_script, dem, largestImpactSpeed(U, g), fallSpeed(U, g)
+    );
     if (runTime.controlDict().lookupOrDefault<Switch>("adjustTimeStep", false))
     {
         FatalErrorInFunction

@@ -115,6 +115,21 @@ double hertz_contact_time(double modulus, double radius, double mass, double imp
   return 2.868 * std::pow(mass * mass / (radius * modulus * modulus * impact_speed), 0.2);
 }
 
+double linear_impact_overlap(double stiffness, double effective_mass, double impact_speed) {
+  require_positive(stiffness, "stiffness");
+  require_positive(effective_mass, "effective_mass");
+  if (impact_speed < 0.0) throw std::invalid_argument("impact_speed must be >= 0");
+  return impact_speed * std::sqrt(effective_mass / stiffness);
+}
+
+double hertz_impact_overlap(double modulus, double radius, double mass, double impact_speed) {
+  require_positive(modulus, "effective_modulus");
+  require_positive(radius, "effective_radius");
+  require_positive(mass, "effective_mass");
+  if (impact_speed < 0.0) throw std::invalid_argument("impact_speed must be >= 0");
+  return std::pow(15.0 * mass * impact_speed * impact_speed / (16.0 * modulus * std::sqrt(radius)), 0.4);
+}
+
 double recommended_time_step(double contact_time, double steps_per_contact) {
   require_positive(contact_time, "contact_time");
   require_positive(steps_per_contact, "steps_per_contact");

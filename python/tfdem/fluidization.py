@@ -308,8 +308,11 @@ class Bed:
         """(t, dp) of p(inlet, area average) - p(probe) - rho_g g h (Pa), the plate's drop
         still included."""
         inlet = outputs.joined_series(self.case.path, "inletPressure", "surfaceFieldValue.dat")
-        above = {t: p[0] for t, p in outputs.probes(self.case.path, "abovePressure", "p")}
-        return [(t, p[0] - above[t] - self.rho_g * self.g * self.probe_height) for t, p in inlet if t in above]
+        # the two function objects print their times at different precisions (the probes at
+        # writePrecision): samples are matched on the time rounded to well below the gas step
+        above = {round(t, 9): p[0] for t, p in outputs.probes(self.case.path, "abovePressure", "p")}
+        return [(t, p[0] - above[round(t, 9)] - self.rho_g * self.g * self.probe_height) for t, p in inlet
+                if round(t, 9) in above]
 
 
 def _columns(rows, column):

@@ -1,6 +1,7 @@
 // Contact relations: seed 001 eq. 16, 27, 41, 43; seed 000 eq. 25-26, Table 1.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -66,6 +67,39 @@ TEST(Contact, HertzContactTimeMatchesIntegratedCollision) {
     EXPECT_NEAR(hertz_contact_time(e_star, radius, m, v) / integrate_hertz_collision(e_star, radius, m, v), 1.0, 5e-3);
   EXPECT_NEAR(hertz_contact_time(e_star, radius, m, 10.0) / hertz_contact_time(e_star, radius, m, 1.0),
               std::pow(10.0, -0.2), 1e-12);
+}
+
+// Deepest overlap of an elastic collision x'' = acceleration(x) from 0 at speed v0 (velocity
+// Verlet; the overlap peaks where the velocity changes sign).
+template <typename Acceleration>
+double integrated_peak_overlap(Acceleration acceleration, double v0, double dt) {
+  double x = 0.0, v = v0, a = 0.0, peak = 0.0;
+  while (v > 0.0) {
+    v += 0.5 * dt * a;
+    x += dt * v;
+    a = acceleration(x);
+    v += 0.5 * dt * a;
+    peak = std::max(peak, x);
+  }
+  return peak;
+}
+
+// The uniform bed's spheres (seed 000 Table 1: k_n 800 N/m, 2.5 mm, 2526 kg/m^3) meeting at
+// 3 m/s, and the Hertz pair above at 1 and 10 m/s: the formulas' deepest overlap equals the
+// integrated collision's within 1e-4.
+TEST(Contact, ImpactOverlapMatchesIntegratedCollision) {
+  const double m = 0.5 * sphere_mass(0.0025, 2526.0), k = 800.0;
+  const double linear = integrated_peak_overlap([&](double x) { return -k * x / m; }, 3.0,
+                                                contact_time_from_damping(k, 0.0, m) / 1e5);
+  EXPECT_NEAR(linear_impact_overlap(k, m, 3.0) / linear, 1.0, 1e-4);
+  EXPECT_EQ(linear_impact_overlap(k, m, 0.0), 0.0);
+  const double e_star = effective_modulus(1e7, 0.3, 1e7, 0.3), radius = 0.001, mh = 0.5 * sphere_mass(0.004, 2700.0);
+  const double c = 4.0 / 3.0 * e_star * std::sqrt(radius) / mh;
+  for (const double v : {1.0, 10.0}) {
+    const double peak = integrated_peak_overlap([c](double x) { return x > 0.0 ? -c * std::pow(x, 1.5) : 0.0; }, v,
+                                                hertz_contact_time(e_star, radius, mh, v) / 1e5);
+    EXPECT_NEAR(hertz_impact_overlap(e_star, radius, mh, v) / peak, 1.0, 1e-4);
+  }
 }
 
 TEST(Contact, EffectiveMassOfEqualSpheresIsHalfAndWallIsParticleMass) {

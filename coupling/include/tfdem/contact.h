@@ -49,6 +49,14 @@ double effective_modulus(double young_a, double poisson_a, double young_b, doubl
 double hertz_contact_time(double effective_modulus, double effective_radius, double effective_mass,
                           double impact_speed);
 
+// Deepest overlap of a head-on impact at `impact_speed`, elastic (damping makes it shallower,
+// so this bounds it): linear, m_eff delta'' = -k_n delta gives delta = v sqrt(m_eff/k_n);
+// Hertz, (1/2) m_eff v^2 = (8/15) E* sqrt(R*) delta^(5/2) gives
+// delta = (15 m_eff v^2 / (16 E* sqrt(R*)))^(2/5) (Johnson, Contact Mechanics, sec. 11.4).
+double linear_impact_overlap(double stiffness, double effective_mass, double impact_speed);
+double hertz_impact_overlap(double effective_modulus, double effective_radius, double effective_mass,
+                            double impact_speed);
+
 // DEM time step resolving a contact with `steps_per_contact` steps (dt = t_c / steps).
 double recommended_time_step(double contact_time, double steps_per_contact);
 

@@ -1,0 +1,31 @@
+// LIGGGHTS data files (read_data) as the coupler checks them before LIGGGHTS reads one: an atom
+// outside the box its header gives, on a side whose boundary drops atoms (f), makes LIGGGHTS
+// stop with "Did not assign all atoms correctly" and no atom named; the coupler names them.
+// Atom lines of atom_style sphere / granular: id type diameter density x y z [image flags].
+#ifndef TFDEM_DATA_FILE_H
+#define TFDEM_DATA_FILE_H
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace tfdem::data_file {
+
+// Which sides of the box drop atoms beyond them, per axis (lower, upper), from a `boundary`
+// command's three words (p, f, s, m, or two of them for the two sides: "fm"). Throws
+// std::invalid_argument for anything else.
+struct Boundary {
+  bool drops[3][2] = {{true, true}, {true, true}, {true, true}};  // LIGGGHTS' default: f f f
+};
+Boundary boundary_from_words(const std::vector<std::string> &words);
+
+// The atoms of the Atoms section LIGGGHTS cannot place: outside the box along a side that
+// drops them ("id 17 at (x, y, z) m (line 20): y is above yhi = 0.45 m"), or with a diameter
+// or position that is not a finite number (at most `limit`; `count` gets them all). Throws
+// std::invalid_argument "file:line: ..." for a header or atom line it cannot read.
+std::vector<std::string> atoms_outside_box(const std::string &text, const std::string &file, const Boundary &boundary,
+                                           std::size_t limit, std::size_t &count);
+
+}  // namespace tfdem::data_file
+
+#endif
