@@ -18,6 +18,7 @@
 #include <cerrno>
 #include <cstdint>
 #include <cstdlib>
+#include <functional>
 #include <iterator>
 
 #include "atom.h"
@@ -178,7 +179,7 @@ DemInstance::DemInstance(MPI_Comm comm, const std::string &script, const std::st
     : comm_(comm) {
   const std::string to_run = script_to_run(script, resume);
   const int rank = rank_of(comm);
-  if (resume && rank == 0) prepare_outputs(*resume);
+  if (resume) on_rank_0([&] { prepare_outputs(*resume); });
   // The logs are LIGGGHTS' own only after construction: started without them, so a resumed
   // run appends to them instead of truncating what the stopped run wrote.
   std::vector<std::string> args = {"tfdem", "-log", "none", "-screen", "none", "-echo", "none"};
@@ -207,7 +208,19 @@ DemInstance::DemInstance(MPI_Comm comm, const std::string &script, const std::st
   LAMMPS_NS::Output *output = lmp_->output;
   for (int i = 0; i < output->ndump; ++i)
     if (output->every_dump[i] > 0 && resume->step % output->every_dump[i] == 0) output->last_dump[i] = resume->step;
-  if (rank == 0) continue_outputs(*resume);
+  on_rank_0([&] { continue_outputs(*resume); });
+}
+
+void DemInstance::on_rank_0(const std::function<void()> &step) const {
+  std::string problem;
+  if (rank_of(comm_) == 0) {
+    try {
+      step();
+    } catch (const std::exception &e) {
+      problem = e.what();
+    }
+  }
+  throw_on_every_rank(comm_, problem);
 }
 
 std::string DemInstance::script_to_run(const std::string &script, const DemResume *resume) {
@@ -216,7 +229,7 @@ std::string DemInstance::script_to_run(const std::string &script, const DemResum
   for (const std::string &p : dem_script::coupled_script_problems(script, parsed)) problems += "\n  " + p;
   if (!problems.empty()) throw std::runtime_error("the DEM input script cannot be coupled:" + problems);
   outputs_ = dem_script::output_files(parsed, &unresumable_outputs_);
-  if (!resume) check_data_file(parsed);
+  if (!resume) on_rank_0([&] { check_data_file(parsed); });
   if (!resume || resume->restart_file.empty()) return script;
   std::string resumed;
   try {
@@ -241,7 +254,6 @@ void DemInstance::check_data_file(const dem_script::Script &script) const {
   const dem_script::Command *style = script.first("atom_style");
   if (!read || read->words.size() < 2 || read->words[1].find('$') != std::string::npos) return;
   if (!style || style->words.size() < 2 || (style->words[1] != "granular" && style->words[1] != "sphere")) return;
-  if (rank_of(comm_) != 0) return;  // LIGGGHTS' own message on the other ranks would be the same
   const std::string &file = read->words[1];
   std::ifstream in(file);
   if (!in) return;  // LIGGGHTS names it

@@ -9,6 +9,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <utility>
@@ -134,6 +135,8 @@ class DemInstance {
  private:
   // The text LIGGGHTS runs: the script checked, flattened and resumed when resuming.
   std::string script_to_run(const std::string &script, const DemResume *resume);
+  // Run `step` on rank 0; what it throws is thrown on every rank (collective).
+  void on_rank_0(const std::function<void()> &step) const;
   // A fresh start's read_data file (atom_style sphere or granular): every atom inside the box
   // on the sides that drop atoms and finite (throws naming them; LIGGGHTS would not).
   void check_data_file(const dem_script::Script &script) const;

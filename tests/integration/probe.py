@@ -21,8 +21,6 @@ import signal
 import subprocess
 import time
 
-import tfdem.run
-
 VERDICTS = ("clear", "handled", "unclear", "crash", "hang", "silent")
 PASSING = ("clear", "handled")
 # What a crash prints: OpenFOAM's signal handlers' stack trace, the shell's and Open MPI's
@@ -31,9 +29,10 @@ CRASH_SIGNS = ("printStack", "sigFpe::sigHandler", "sigSegv::sigHandler", "Segme
                "*** Process received signal ***", "exited on signal")
 
 
-def run(args, cwd, log_name, ranks=1, gas=tfdem.run.DEFAULT_GAS_LAYOUT, timeout=120, env=None):
+def run(args, cwd, log_name, ranks=1, gas="whole", timeout=120, env=None):
     """Run a program as tfdem.run.run does, killed (its whole process group) after `timeout`
     s; returns (exit code, output, timed out). Negative exit code: killed by that signal."""
+    import tfdem.run  # here: the table below needs no environment
     log = os.path.join(cwd, log_name)
     env = dict(env or tfdem.run.environment())
     env["PWD"] = cwd  # as a shell started there would have it (OpenFOAM compares the two)
