@@ -110,6 +110,22 @@ class Suite:
         raise SystemExit(1 if failed or not self.outcomes else 0)
 
 
+def edit(path, old, new):
+    """Replace every `old` in a file by `new`; `old` must be there."""
+    text = open(path).read()
+    assert old in text, (path, old)
+    with open(path, "w") as f:
+        f.write(text.replace(old, new))
+
+
+def all_of(*changes):
+    """One change (of a case folder) made of several, in order."""
+    def change(case):
+        for c in changes:
+            c(case)
+    return change
+
+
 def timed(function, *args, **kwargs):
     start = time.monotonic()
     result = function(*args, **kwargs)

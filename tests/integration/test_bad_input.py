@@ -28,10 +28,6 @@ WHERE = os.path.join(BUILD_DIR, "test-runs", "bad_input")
 CHECKPOINTED = os.path.join(WHERE, "template_checkpointed")
 
 
-def edit(path, old, new, count=-1):
-    text = open(path).read()
-    assert old in text, (path, old)
-    open(path, "w").write(text.replace(old, new, count))
 
 
 def append(path, text):
@@ -46,7 +42,7 @@ def write(path, text):
 
 
 def in_case(relative, old, new):
-    return lambda c: edit(os.path.join(c, relative), old, new)
+    return lambda c: probe.edit(os.path.join(c, relative), old, new)
 
 
 def yaml(old, new):
@@ -63,13 +59,6 @@ def dem_append(text):
 
 def control(**entries):
     return lambda c: Case(c).set_control(**entries)
-
-
-def both(*faults):
-    def fault(c):
-        for f in faults:
-            f(c)
-    return fault
 
 
 def mesh_again(c):
@@ -100,7 +89,7 @@ def included(name, text, replace=None):
     def fault(c):
         write(os.path.join(c, name), text)
         if replace:
-            edit(os.path.join(c, "in.settling"), replace, f"include {name}")
+            probe.edit(os.path.join(c, "in.settling"), replace, f"include {name}")
         else:
             append(os.path.join(c, "in.settling"), f"include {name}\n")
     return fault
@@ -135,11 +124,11 @@ def coupling_as_folder(c):
 
 def script_as_folder(c):
     os.makedirs(os.path.join(c, "in.folder"))
-    edit(os.path.join(c, "coupling.yaml"), "script: in.settling", "script: in.folder")
+    probe.edit(os.path.join(c, "coupling.yaml"), "script: in.settling", "script: in.folder")
 
 
 def outlet_on_fixed_face(c):
-    edit(os.path.join(c, "coupling.yaml"), "  coupling_interval: 10\n", "  coupling_interval: 10\n  outlets: [top]\n")
+    probe.edit(os.path.join(c, "coupling.yaml"), "  coupling_interval: 10\n", "  coupling_interval: 10\n  outlets: [top]\n")
 
 
 # -- restart faults, on a copy of the checkpointed settling case --------------------------------
@@ -274,8 +263,8 @@ def case_path_with_space(c):
 def second_solver(c):
     """A first run of the case holds it, slow enough (1 us steps) to outlast the probed run's
     10 s wait for the lock; the probed run, of the same case, never starts its steps."""
-    edit(os.path.join(c, "in.settling"), "timestep        1e-4", "timestep        1e-6")
-    edit(os.path.join(c, "coupling.yaml"), "coupling_interval: 10", "coupling_interval: 1")
+    probe.edit(os.path.join(c, "in.settling"), "timestep        1e-4", "timestep        1e-6")
+    probe.edit(os.path.join(c, "coupling.yaml"), "coupling_interval: 10", "coupling_interval: 1")
     Case(c).set_control(deltaT=1e-6, endTime=0.5, writeInterval=0.5)
     first = subprocess.Popen(["tfdemFoam"], cwd=c, env=environment(), stdout=open(os.path.join(c, "log.first"), "w"),
                              stderr=subprocess.STDOUT, start_new_session=True)
@@ -456,7 +445,7 @@ DEM = [
      ["bed.data: 1 atom(s) LIGGGHTS cannot place", "id 2 at (0.03, 0.45, 0.01) m (line 13): y is above yhi = 0.4 m",
       "widen the box"]),
     ("data file cut short",
-     both(lambda c: settling_from_data(c, atoms_at((0.03, 0.35, 0.01), (0.03, 0.3, 0.01))),
+     probe.all_of(lambda c: settling_from_data(c, atoms_at((0.03, 0.35, 0.01), (0.03, 0.3, 0.01))),
           in_case("bed.data", "2 1 0.0001 2500 0.03 0.3 0.01\n", "")),
      ["LIGGGHTS ERROR", "log.liggghts.screen"]),
 ]
@@ -476,17 +465,17 @@ GAS = [
     ("adjustable time step", control(adjustTimeStep="yes"), ["adjustTimeStep must be 'no'"]),
     ("2-D rule with a deep mesh", yaml("    method: centroid", "    method: centroid\n    two_dimensional: true"),
      ["coupling.void_fraction.two_dimensional is true", "depth = particles.diameter = 0.0001 m", "1 cell(s) of depth 0.02 m"]),
-    ("graded mesh", both(in_case(os.path.join("system", "blockMeshDict"), "simpleGrading (1 1 1)", "simpleGrading (1 2 1)"),
+    ("graded mesh", probe.all_of(in_case(os.path.join("system", "blockMeshDict"), "simpleGrading (1 1 1)", "simpleGrading (1 2 1)"),
                          mesh_again), ["needs a uniform Cartesian mesh"]),
     ("no mesh", no_mesh, ["polyMesh", "points"]),
     ("particle outside the mesh",
-     both(in_case(os.path.join("system", "blockMeshDict"), "0.4", "0.3"), mesh_again),
+     probe.all_of(in_case(os.path.join("system", "blockMeshDict"), "0.4", "0.3"), mesh_again),
      ["particle 0 at (0.03, 0.35, 0.01) m is outside the mesh"]),
     ("particle outside the mesh on 2 ranks, split",
-     both(in_case(os.path.join("system", "blockMeshDict"), "0.4", "0.3"), mesh_again),
+     probe.all_of(in_case(os.path.join("system", "blockMeshDict"), "0.4", "0.3"), mesh_again),
      ["at t = 0 s: particle 0 at (0.03, 0.35, 0.01) m is outside the mesh"], {"ranks": 2, "gas": "split"}),
     ("particle outside the mesh on 2 ranks, whole",
-     both(in_case(os.path.join("system", "blockMeshDict"), "0.4", "0.3"), mesh_again),
+     probe.all_of(in_case(os.path.join("system", "blockMeshDict"), "0.4", "0.3"), mesh_again),
      ["at t = 0 s: particle 0 at (0.03, 0.35, 0.01) m is outside the mesh"], {"ranks": 2}),
     ("re-read controlDict with the gas whole on 2 ranks", control(runTimeModifiable="true"),
      ["the gas is solved whole on each of 2 ranks", "runTimeModifiable true", "Fix: runTimeModifiable false"],

@@ -47,11 +47,6 @@ def pack(name, variables):
     return where
 
 
-def replace_in(path, old, new):
-    text = open(path).read()
-    assert old in text, (path, old)
-    with open(path, "w") as f:
-        f.write(text.replace(old, new))
 
 
 def set_damping(case, particles, walls):
@@ -125,20 +120,13 @@ def run_hard(suite, h):
 # -- changes and checks ------------------------------------------------------------------------
 
 def inflow(speed, field="U", old="value uniform (0 39 0)"):
-    return lambda case: replace_in(case.file("0", field), old, f"value uniform (0 {speed} 0)")
+    return lambda case: probe.edit(case.file("0", field), old, f"value uniform (0 {speed} 0)")
 
 
 def coupling(**entries):
     def change(case):
         for key, value in entries.items():
             case.set_coupling(key.replace("__", "."), value)
-    return change
-
-
-def both(*changes):
-    def change(case):
-        for c in changes:
-            c(case)
     return change
 
 
@@ -171,11 +159,11 @@ def squeezed(fraction):
 
 
 def no_gravity_in_dem(case):
-    replace_in(case.file("in.bed"), "fix             grav all gravity 9.81 vector 0 -1 0\n", "")
+    probe.edit(case.file("in.bed"), "fix             grav all gravity 9.81 vector 0 -1 0\n", "")
 
 
 def coupling_fix_included(case):
-    replace_in(case.file("in.bed"), "fix             fluid all tfdem/coupling\n", "include coupling.in\n")
+    probe.edit(case.file("in.bed"), "fix             fluid all tfdem/coupling\n", "include coupling.in\n")
     open(case.file("coupling.in"), "w").write("fix             fluid all tfdem/coupling\n")
 
 
@@ -192,22 +180,22 @@ def hertz_bed(case):
 
 
 def falling_fast(case):
-    replace_in(case.file("in.bed"), "fix             fluid all tfdem/coupling",
+    probe.edit(case.file("in.bed"), "fix             fluid all tfdem/coupling",
                "velocity        all set 0 -3 0\nfix             fluid all tfdem/coupling")
 
 
 def frozen_bed(case):
-    replace_in(case.file("in.bed"), "fix             integr all nve/sphere\n", "")
+    probe.edit(case.file("in.bed"), "fix             integr all nve/sphere\n", "")
 
 
 def dem_step_at_limit(case):
     """t_c/12: above the rule's 57 steps (advice printed), below the t_c/10 refusal."""
-    replace_in(case.file("in.bed"), "timestep        6.25e-6", "timestep        2.5e-5")
+    probe.edit(case.file("in.bed"), "timestep        6.25e-6", "timestep        2.5e-5")
     case.set_coupling("dem.coupling_interval", 20)  # the same gas step, 5e-4 s
 
 
 def courant_above_rule(case):
-    replace_in(case.file("0", "U"), "value uniform (0 5 0)", "value uniform (0 50 0)")
+    probe.edit(case.file("0", "U"), "value uniform (0 5 0)", "value uniform (0 50 0)")
 
 
 def lighter_particles(case):
@@ -232,7 +220,7 @@ def empty_domain(case):
 
 
 def all_blown_out(case):
-    replace_in(case.file("0", "U"), "value uniform (0 5 0)", "value uniform (0 12 0)")
+    probe.edit(case.file("0", "U"), "value uniform (0 5 0)", "value uniform (0 12 0)")
 
 
 def check_emptied_and_resumed(case, output):
@@ -276,7 +264,7 @@ def killed_and_resumed(case, output):
 
 
 def side_outputs(case):
-    replace_in(case.file("in.bed"), "fix             height_out",
+    probe.edit(case.file("in.bed"), "fix             height_out",
                "fix             avg all ave/time 1 1 80 c_height file averages.txt\n"
                "dump            snap all custom 800 snap.dump id x y vx vy\n"
                "dump_modify     snap sort id\n"
@@ -338,7 +326,7 @@ HARD = [
     Hard("speeds and time steps", "jet at 150 m/s, centroid mapping", JET, "jet", 0.1, inflow(150),
          stop_words=["fill it: gas fraction", "before any floor", "divided or porous_cube"]),
     Hard("speeds and time steps", "jet at 150 m/s, porous cube", JET, "jet", 0.1,
-         both(inflow(150), coupling(coupling__void_fraction__method="porous_cube")), particle_mass=JET_MASS),
+         probe.all_of(inflow(150), coupling(coupling__void_fraction__method="porous_cube")), particle_mass=JET_MASS),
     Hard("speeds and time steps", "gas Courant number above the measured 3.2", BLOWOUT, None, 0.01,
          courant_above_rule, warn_words=["TFDEM warning: the gas Courant number reached", "(> 3.2"]),
     Hard("speeds and time steps", "DEM step at t_c/12", BED, "bed", 0.05, dem_step_at_limit, particle_mass=BED_MASS,
