@@ -22,6 +22,9 @@ std::string input_script_path(int argc, char **argv) {
 }  // namespace
 
 int main(int argc, char **argv) {
+  // LIGGGHTS writes its screen to stdout and stops on an error with MPI_Abort, which does not
+  // flush it: line by line, so the error reaches a log file too (not only a terminal)
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
   MPI_Init(&argc, &argv);
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);

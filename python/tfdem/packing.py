@@ -7,9 +7,14 @@ coupling.yaml, and what only the packing needs from the case's packing.yaml:
     floor: 0.0                  # optional: height of the plate the bed rests on (m)
     seed: 15485863              # optional: a prime; another one gives another packing
 
-The data file's box is the column, so the case's DEM script can read_data it.
+The data file's box is the column, so the case's DEM script can read_data it. A column one
+particle deep (seed 000's 2-D rule) leaves no room to insert a sphere: it is poured into a slab
+PLANE_SLAB diameters deep, where spheres cannot pass one another, and every centre is then
+moved onto the mid-plane (overlaps of at most d - sqrt(d^2 - ((PLANE_SLAB - 1) d)^2), 0.13 %
+of d).
 """
 import os
+import re
 
 import yaml
 
@@ -18,10 +23,20 @@ from tfdem import TUTORIALS
 from tfdem.case import Case, CaseError
 
 POUR_SCRIPT = os.path.join(TUTORIALS, "poured_packing", "in.pour")
+PLANE_SLAB = 1.05  # depth of the slab a one-layer bed is poured into, in diameters
 
 
-def pour_variables(case, count, mass_fraction_small=1.0, floor=None, seed=None):
-    """The -var settings of in.pour for `case` (a Case or its path)."""
+def one_layer(case):
+    """Whether the case's column is one particle deep (depth < 1.5 of the largest diameter)."""
+    case = case if isinstance(case, Case) else Case(case)
+    lo, hi = case.mesh_bounds()
+    return hi[2] - lo[2] < 1.5 * case.particle_diameters()[-1]
+
+
+def pour_variables(case, count, mass_fraction_small=1.0, floor=None, seed=None, friction=None):
+    """The -var settings of in.pour for `case` (a Case or its path); `friction`: the pour's
+    mu (in.pour's own default otherwise). A one-layer column is poured PLANE_SLAB diameters
+    deep."""
     case = case if isinstance(case, Case) else Case(case)
     lo, hi = case.mesh_bounds()
     if abs(lo[0]) > 1e-12 or abs(lo[2]) > 1e-12:
@@ -37,7 +52,57 @@ def pour_variables(case, count, mass_fraction_small=1.0, floor=None, seed=None):
               "rho": float(case.coupling_value("particles.density"))}
     if seed is not None:
         values["seed"] = int(seed)
+    if friction is not None:
+        values["mu"] = float(friction)
+    if one_layer(case):
+        values["depth"] = PLANE_SLAB * diameters[-1]
+        # in the slab the spheres keep rattling at ~7 mm/s (the jet bed's 2400 of 4 mm, its
+        # mean height steady to 1e-5 m over 40,000 steps): at rest below 1 cm/s
+        values["rest_speed"] = 0.01
     return values
+
+
+def set_atom_types(path, count):
+    """Declare `count` atom types in a data file (the DEM script's type count: in.pour writes
+    3, small, large and the walls, where a template may use 2); every atom's type must be in
+    1 .. count."""
+    text = open(path).read()
+    section, highest = "", 0
+    for line in text.split("\n"):
+        words = line.split()
+        if words and words[0][0].isalpha():
+            section = words[0]
+        elif section == "Atoms" and len(words) >= 7:
+            highest = max(highest, int(words[1]))
+    if highest > count:
+        raise CaseError(f"{path}: atoms of type {highest}, more than the {count} types to declare")
+    text, n = re.subn(r"(?m)^\s*\d+\s+atom types\s*$", f"{count} atom types", text)
+    if n != 1:
+        raise CaseError(f"{path}: no 'N atom types' line in its header")
+    with open(path, "w") as f:
+        f.write(text)
+
+
+def to_mid_plane(path, depth):
+    """Move every centre of a data file onto the plane z = depth/2, keep its motion in the
+    plane (v_z, omega_x, omega_y = 0: a bed under the 2-D rule may have no walls in z) and
+    make its box `depth` deep (a bed poured PLANE_SLAB diameters deep)."""
+    lines, out, section = open(path).read().split("\n"), [], ""
+    for line in lines:
+        words = line.split()
+        if words and words[0][0].isalpha():
+            section = words[0]
+        if line.rstrip().endswith("zlo zhi"):
+            line = f"0 {depth!r} zlo zhi"
+        elif section == "Atoms" and len(words) >= 7 and words[0].isdigit():
+            words[6] = repr(depth / 2)
+            line = " ".join(words)
+        elif section == "Velocities" and len(words) >= 7 and words[0].isdigit():  # id vx vy vz wx wy wz
+            words[3] = words[4] = words[5] = "0"
+            line = " ".join(words)
+        out.append(line)
+    with open(path, "w") as f:
+        f.write("\n".join(out))
 
 
 def packing_settings(case):
@@ -74,4 +139,8 @@ def pour(case, count, out="bed.data", ranks=1, runner=tfdem.run.run, **options):
     lines = [line for line in output.splitlines() if line.startswith("TFDEM packed bed")]
     if not lines:
         raise CaseError(f"{case.file('log.pour')}: the pour printed no 'TFDEM packed bed' line")
+    if one_layer(case):
+        lo, hi = case.mesh_bounds()
+        to_mid_plane(case.file(out), hi[2] - lo[2])
+        return lines[-1] + f" (poured {PLANE_SLAB} diameters deep, centres moved onto the mid-plane)"
     return lines[-1]

@@ -72,6 +72,7 @@ def check_bad_input(checks):
     root = scratch("study_failing_run")
     definition = yaml.safe_load(open(os.path.join(STUDY, "study.yaml")))
     definition["runs"] = {"uniform_m1": {"bed": "uniform"}, "uniform_small_cells": {"bed": "uniform", "refine_y": 10}}
+    definition.pop("realizations")
     path = os.path.join(root, "study.yaml")
     yaml.safe_dump(definition, open(path, "w"))
     args = ["--end-time", "0.2", "--root", root, "--study", path]

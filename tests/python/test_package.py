@@ -14,7 +14,7 @@ from tfdem.batch import variants_command_line
 from tfdem.bubble import coloured_above, find_bubble
 from tfdem.case import Case, CaseError, set_yaml_value
 from tfdem.outputs import OutputError, dump_frames, fix_print, joined_series
-from tfdem.packing import packing_settings
+from tfdem.packing import packing_settings, set_atom_types, to_mid_plane
 from tfdem.physics import slab_solid_fraction
 from tfdem.run import command
 from tfdem.stats import batch_means
@@ -148,6 +148,27 @@ def main():
     # one above the new middle 0.15 m: 1/4.
     check("coloured fraction above a moved middle",
           coloured_above(start, [1, 2, 3, 4, 5], [0.07, 0.10, 0.13, 0.16, 0.3], 0.1, 0.15) == 0.25)
+
+    # A one-layer bed poured in a slab, moved onto the mid-plane of a 4 mm deep box, its motion
+    # kept in the plane, declared with the template's 2 atom types; a type beyond them refused
+    data = os.path.join(case_dir, "poured.data")
+    write(data, "LIGGGHTS data file\n\n2 atoms\n3 atom types\n\n0 0.15 xlo xhi\n0 0.9 ylo yhi\n"
+                "0 0.0042 zlo zhi\n\nAtoms\n\n1 1 0.004 2700 0.01 0.02 0.0019 0 0 0\n"
+                "2 1 0.004 2700 0.05 0.02 0.0023 0 0 0\n\nVelocities\n\n1 0.1 0.2 0.3 0.4 0.5 0.6\n"
+                "2 0 0 -0.01 0.02 0 1\n")
+    to_mid_plane(data, 0.004)
+    set_atom_types(data, 2)
+    lines = open(data).read().split("\n")
+    check("moved onto the mid-plane", lines[10].split()[6] == "0.002" and lines[11].split()[6] == "0.002", lines[10])
+    check("box 4 mm deep", "0 0.004 zlo zhi" in lines, str(lines[:9]))
+    check("in-plane motion kept: vx vy wz", lines[15].split() == ["1", "0.1", "0.2", "0", "0", "0", "0.6"], lines[15])
+    check("2 atom types declared", "2 atom types" in lines, str(lines[:5]))
+    try:
+        set_atom_types(data, 0)
+        message = ""
+    except CaseError as e:
+        message = str(e)
+    check("a type beyond the declared count refused", "atoms of type 1, more than the 0 types" in message, message)
 
     # The gas layouts' commands: whole runs without -parallel, split with it; serial as is
     check("gas whole on 2 ranks: mpirun, no -parallel",

@@ -24,6 +24,7 @@ from tfdem import TUTORIALS
 from tfdem.batch import BatchError, CaseRun, clock, run_batch
 from tfdem.bed import write_bed_probes
 from tfdem.case import Case, CaseError, set_dict_entries
+from tfdem.packing import pour, set_atom_types
 from tfdem.run import RunError, environment, run
 
 STUDY_DIR = os.path.dirname(os.path.abspath(__file__))
@@ -45,14 +46,36 @@ def load_study(path=os.path.join(STUDY_DIR, "study.yaml")):
     except yaml.YAMLError as e:
         raise StudyError(f"{path}: malformed YAML: {e}") from None
     for name, spec in study["runs"].items():
-        if spec.get("bed") not in study["beds"]:
+        if not isinstance(spec, dict) or spec.get("bed") not in study["beds"]:
             raise StudyError(f"{path}: run {name}: bed must be one of {sorted(study['beds'])}, got {spec.get('bed')!r}")
         for key in spec:
             if key not in RUN_KEYS:
                 near = difflib.get_close_matches(key, RUN_KEYS, 1)
                 raise StudyError(f"{path}: run {name}: unknown key '{key}'"
                                  + (f" (did you mean '{near[0]}'?)" if near else "") + f"; valid: {', '.join(RUN_KEYS)}")
+    study["runs"] = with_realizations(study, path)
     return study
+
+
+def with_realizations(study, path):
+    """The runs, and each one study.yaml's realizations list again once per seed, as
+    <run>_r<k> from a poured packing of that seed."""
+    spec = study.get("realizations")
+    if not spec:
+        return study["runs"]
+    runs = dict(study["runs"])
+    seeds = spec.get("seeds") or []
+    if not seeds or any(not isinstance(s, int) or s <= 10000 for s in seeds):
+        raise StudyError(f"{path}: realizations.seeds must list primes above 10000 (LIGGGHTS' insertion seeds), "
+                         f"got {seeds!r}")
+    for name in spec.get("runs") or []:
+        if name not in study["runs"]:
+            near = difflib.get_close_matches(name, list(study["runs"]), 1)
+            raise StudyError(f"{path}: realizations.runs: no run '{name}'" + (f" (did you mean '{near[0]}'?)" if near
+                                                                               else ""))
+        for k, seed in enumerate(seeds, 1):
+            runs[f"{name}_r{k}"] = dict(study["runs"][name], seed=seed)
+    return runs
 
 
 class Run(CaseRun):
@@ -103,9 +126,9 @@ class Run(CaseRun):
         case.set_coupling("output.statistics_interval", self.study["statistics_interval"])
         case.set_coupling("output.particles_vtk", True)
         self._set_initial_gas(case.file("0", "U"))
-        data = self._packing()
-        shutil.copy(data, case.file(os.path.basename(data)))
         run(["blockMesh"], case.path, "log.blockMesh")
+        data = self._packing()
+        shutil.copy(data, case.file(os.path.basename(data).replace("poured_", "")))
 
     def _prepare_tfm(self, refine):
         case = self.case
@@ -125,14 +148,27 @@ class Run(CaseRun):
         open(path, "w").write(text)
 
     def _packing(self):
-        """The template's initial packing, made once in the tutorial folder."""
+        """The initial packing: the template's lattice one, made once in the tutorial folder,
+        or for a realization (a seed) one poured in the run folder with as many particles
+        and the template's friction."""
         if self.spec["bed"] == "jet":
             run(["./Allpack"], os.path.join(TUTORIALS, "jet_bed"), "log.Allpack")
-            return os.path.join(TUTORIALS, "jet_bed", "packed_bed.data")
-        data = os.path.join(TUTORIALS, "bubbling_bed_packing", "bed.data")
-        if not os.path.isfile(data):
-            run(["./Allrun"], os.path.join(TUTORIALS, "bubbling_bed_packing"), "log.Allrun")
-        return data
+            lattice = os.path.join(TUTORIALS, "jet_bed", "packed_bed.data")
+        else:
+            lattice = os.path.join(TUTORIALS, "bubbling_bed_packing", "bed.data")
+            if not os.path.isfile(lattice):
+                run(["./Allrun"], os.path.join(TUTORIALS, "bubbling_bed_packing"), "log.Allrun")
+        if "seed" not in self.spec:
+            return lattice
+        header = open(lattice).read()
+        count = int(re.search(r"(?m)^\s*(\d+)\s+atoms\s*$", header).group(1))
+        types = int(re.search(r"(?m)^\s*(\d+)\s+atom types\s*$", header).group(1))
+        script = open(self.case.file("in.bed")).read()
+        friction = float(re.search(r"coefficientFriction peratomtypepair \d+ (\S+)", script).group(1))
+        poured = self.case.file("poured_" + os.path.basename(lattice))
+        print(f"{self.name}: {pour(self.case, count, out=os.path.basename(poured), seed=self.spec['seed'], friction=friction)}")
+        set_atom_types(poured, types)
+        return poured
 
     def write_interval(self, end_time):
         return self.study["write_interval"] * self._scale(end_time)
