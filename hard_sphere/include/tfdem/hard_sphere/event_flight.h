@@ -1,0 +1,118 @@
+// Free flight with hard-sphere collisions over one flow step (seed 001 sec. 3.3, Fig. 5): the
+// particles move on straight lines between collisions, processed one by one in the order they
+// occur (event-driven), each by tfdem::hard_sphere::collide (eqs. 11-21).
+//
+// The search is restricted as in eq. 44: each particle's partners are those within
+// R_a + R_b + skin, with skin at least 2 v_allow dt (v_allow = 1.5 v_max: the closing speed of
+// two particles at v_allow over a flow step) and at least kSkinDiameters of the largest
+// diameter, so the lists serve several flow steps. They are built again when an unlisted
+// pair could have closed its skin: when the two longest paths travelled since the build,
+// plus what a flow step can add, reach it, or when a collision makes a particle faster than
+// v_allow (Verlet's criterion, on paths rather than displacements). The time to a collision is eq. 45, written
+// without its cancellation, t = c / (-b + sqrt(b^2 - u^2 c)), b = r.u, c = r^2 - (R_a + R_b)^2:
+// a pair moving apart (b >= 0) never collides; one that touches or overlaps (c <= 0, by
+// round-off or from a soft-sphere packing) while approaching collides at once. Each particle
+// holds one predicted event (eqs. 46-47) in a heap; an event stale after either partner
+// collided (collision counters) is dropped when it comes up and its particle predicted anew.
+// Walls are the planes of a box (infinite mass); a side without one is open; an axis may
+// instead be periodic (a granular gas without walls).
+//
+// Inelastic collapse (seed 001 sec. 2.1: collision rates diverge as relative velocities vanish
+// in dense, dissipative beds) is kept off by the TC model of Luding and McNamara (1998): a
+// collision within `elastic_within` seconds of either particle's previous one is elastic and
+// smooth. A flow step with more than `max_collisions_per_particle` collisions per particle
+// stops with a message (a bed the event-driven model cannot carry).
+#ifndef TFDEM_HARD_SPHERE_EVENT_FLIGHT_H
+#define TFDEM_HARD_SPHERE_EVENT_FLIGHT_H
+
+#include <cstddef>
+#include <vector>
+
+#include "tfdem/hard_sphere/collision.h"
+#include "tfdem/hard_sphere/vec3.h"
+
+namespace tfdem::hard_sphere {
+
+// The box's planes; wall[a][side] (side 0 lower, 1 upper): a wall there, else open, unless
+// the axis is periodic (then it has no walls, and at least 3 neighbour cells across).
+struct WallBox {
+  double lower[3] = {0, 0, 0}, upper[3] = {1, 1, 1};
+  bool wall[3][2] = {{true, true}, {true, true}, {true, true}};
+  bool periodic[3] = {false, false, false};
+};
+
+// Collisions of one flow step.
+struct FlightCounts {
+  long pair = 0, wall = 0;      // collisions processed
+  long elastic = 0;              // of them, made elastic by the TC model
+  long predictions = 0;          // particles whose next event was predicted
+  long list_builds = 0;          // neighbour lists built
+};
+
+class EventFlight {
+ public:
+  // Per-particle state, structure of arrays (the engine owns and edits it between steps)
+  std::vector<Vec3> position, velocity, spin;
+  std::vector<double> radius, mass;
+  std::vector<int> type;           // 0 .. type_count - 1
+  std::vector<Vec3> impulse;       // sum of the impulses of the last step, per particle (N s)
+  std::vector<double> last_collision;  // clock time of each particle's last collision (s)
+
+  // pair_laws[a * type_count + b] (symmetric), wall_laws[a]
+  EventFlight(const WallBox &box, int type_count, std::vector<CollisionLaw> pair_laws,
+              std::vector<CollisionLaw> wall_laws, double elastic_within, long max_collisions_per_particle);
+
+  // Move every particle over `dt` seconds from the clock on, colliding as they meet; the
+  // clock advances by dt. Throws std::runtime_error for more collisions than the bound.
+  FlightCounts fly(double dt);
+
+  double clock() const { return clock_; }
+  void set_clock(double t) { clock_ = t; }
+  std::size_t size() const { return position.size(); }
+  // Add a particle (type 0-based); remove particles by index (order of the rest kept)
+  void add(const Vec3 &x, const Vec3 &v, const Vec3 &w, double r, double m, int type);
+  void remove(std::vector<std::size_t> indices);
+  const WallBox &box() const { return box_; }
+
+ private:
+  struct Event {
+    double time;
+    int particle, partner;  // partner < 0: wall -1 - (2 axis + side)
+    long count, partner_count;
+    bool operator>(const Event &o) const { return time > o.time; }
+  };
+
+  void build_lists(double now, double end);
+  // r with the periodic axes' nearest image
+  Vec3 nearest(Vec3 r) const;
+  // Whether the lists hold every pair that can meet within the next `dt` at speeds below
+  // `allowed`
+  bool lists_hold(double dt, double allowed) const;
+  void predict(int i, double now, double end);
+  void advance_to(int i, double t);
+  const CollisionLaw &law(int a, int b) const { return pair_laws_[type[a] * type_count_ + type[b]]; }
+
+  WallBox box_;
+  int type_count_;
+  std::vector<CollisionLaw> pair_laws_, wall_laws_;
+  double elastic_within_;
+  long max_collisions_per_particle_;
+  double clock_ = 0;
+  // within a step: each particle's time of its stored position, collision counter
+  std::vector<double> time_;
+  std::vector<long> count_;
+  // partners of each particle (first_[i] .. first_[i + 1] in partners_), their skin (m), and
+  // each particle's path since they were built (m)
+  std::vector<int> first_, partners_;
+  double skin_ = 0;
+  std::vector<double> path_;
+  bool lists_built_ = false;
+  bool periodic_ = false;
+  std::vector<Event> heap_;
+  double allowed_speed_ = 0;
+  FlightCounts counts_;
+};
+
+}  // namespace tfdem::hard_sphere
+
+#endif
