@@ -16,6 +16,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <functional>
@@ -334,6 +335,10 @@ void DemInstance::continue_outputs(const DemResume &resume) {
 DemInstance::~DemInstance() {
   delete lmp_;
   console_.reset();
+}
+
+void DemInstance::advance(double seconds, bool sample_contacts) {
+  run(std::llround(seconds / time_step()), sample_contacts);
 }
 
 void DemInstance::run(long steps, bool sample_contacts) {

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "tfdem/dem_script.h"
+#include "tfdem/particle_engine.h"
 
 namespace LAMMPS_NS {
 class LAMMPS;
@@ -26,18 +27,9 @@ namespace tfdem {
 
 class DemConsole;
 
-// A file the DEM script writes as it runs (fix print, fix ave/*, a dump of one file) and its
-// size in bytes at a checkpoint.
-using OutputSize = std::pair<std::string, std::uint64_t>;
-
-// What a run resumed from a checkpoint starts from.
-struct DemResume {
-  std::string restart_file;          // LIGGGHTS restart file; "" when the bed had emptied
-  long long step = 0;                // the DEM step of the checkpoint
-  std::vector<OutputSize> outputs;   // the script's output files at the checkpoint
-};
-
-class DemInstance {
+// LIGGGHTS as the coupler's particle engine (soft spheres; contacts, walls and integration
+// are the DEM script's own).
+class DemInstance : public ParticleEngine {
  public:
   // Start LIGGGHTS on `comm`, log to log_file (screen output to log_file + ".screen"; its
   // ERROR lines also go to each rank's stderr), register our fixes and run `script` (with
@@ -50,10 +42,14 @@ class DemInstance {
   // Throws std::runtime_error naming the script and every problem found.
   DemInstance(MPI_Comm comm, const std::string &script, const std::string &log_file,
               const DemResume *resume = nullptr);
-  ~DemInstance();
+  ~DemInstance() override;
   DemInstance(const DemInstance &) = delete;
   DemInstance &operator=(const DemInstance &) = delete;
 
+  std::string name() const override { return "LIGGGHTS"; }
+  // Advance `seconds` as a whole number of DEM steps (the coupler checks at start that the gas
+  // step is one)
+  void advance(double seconds, bool sample_contacts) override;
   // Advance `steps` DEM steps (LIGGGHTS `run`; set-up only the first time and after a
   // restart file was written). With `sample_contacts`, the fix records every particle's
   // contact force and N_c at the last step. With no particles and no insertion fix there is
@@ -65,16 +61,16 @@ class DemInstance {
   // rank's particle block, so a write cut short by a full disk is caught), synced to disk,
   // then renamed. Collective. Throws std::runtime_error naming the file and what is wrong. An
   // empty DEM without insertion (nothing to run, nothing to save) writes none: false.
-  bool write_restart(const std::string &path);
+  bool write_restart(const std::string &path) override;
   // The script's output files (rank 0; none elsewhere) and their sizes now, every C stream of
   // this process flushed first: what a checkpoint records. Collective.
-  std::vector<OutputSize> output_sizes();
+  std::vector<OutputSize> output_sizes() override;
   // The script's output files whose names are patterns or variables ("file:line: name"): a
   // resumed run cannot cut them back to a checkpoint (a file per snapshot is written whole).
-  const std::vector<std::string> &unresumable_outputs() const { return unresumable_outputs_; }
+  const std::vector<std::string> &unresumable_outputs() const override { return unresumable_outputs_; }
   // Remove the particles with these atom IDs from the DEM (the same list on every rank;
   // collective). Their IDs are not reused; the next run sets up again.
-  void remove_particles(const std::vector<int> &tags);
+  void remove_particles(const std::vector<int> &tags) override;
   // True when the script moves its particles (a time-integration fix: nve*, nvt*, npt*,
   // rigid*); a frozen bed has none.
   bool integrates() const;
@@ -84,35 +80,32 @@ class DemInstance {
   void command(const std::string &line);
   double time_step() const;
   // DEM steps done since the start of the simulation (restarts included).
-  long long step() const;
+  long long step() const override;
+  double time() const override { return step() * time_step(); }
   // Particles on this rank and their per-atom arrays (x, v: 3 per atom; radius, mass: 1).
-  std::size_t local_count() const;
-  const double *positions() const;
-  const double *velocities() const;
-  const double *radii() const;
-  const double *masses() const;
+  std::size_t local_count() const override;
+  const double *positions() const override;
+  const double *velocities() const override;
+  const double *radii() const override;
+  const double *masses() const override;
   // Atom IDs and atom types (1 .. type_count()) of the local particles.
-  const int *tags() const;
-  const int *types() const;
-  int type_count() const;
+  const int *tags() const override;
+  const int *types() const override;
+  int type_count() const override;
   // Set the fluid force applied to each local particle every DEM step until set again
   // (3 per local particle, in local order).
-  void set_fluid_force(const std::vector<double> &force);
+  void set_fluid_force(const std::vector<double> &force) override;
   // Contact force (3 per atom, N) and N_c of the local particles at the last sample.
-  void contact_sample(std::vector<double> &force, std::vector<int> &coordination) const;
+  void contact_sample(std::vector<double> &force, std::vector<int> &coordination) const override;
   // Sum of the gravity vectors of the script's `fix gravity` commands (m/s^2); false when it
   // has none.
   bool gravity(double g[3]) const;
   // Total particles over all ranks, as LIGGGHTS counts them (updated at its own checks).
-  long global_count() const;
+  long global_count() const override;
 
-  // The DEM's box and, per axis and side (lower, upper), whether particles crossing that
-  // face are dropped (LIGGGHTS boundary f: fixed; p wraps them, s and m move the face).
-  struct Box {
-    double lower[3] = {0, 0, 0}, upper[3] = {0, 0, 0};
-    bool drops[3][2] = {{false, false}, {false, false}, {false, false}};
-  };
-  Box box() const;
+  // The DEM's box; particles crossing a face of boundary f are dropped (p wraps them, s and m
+  // move the face).
+  Box box() const override;
 
   // Normal contact parameters between atom types a and b (1-based) of a linear model, as the
   // script set them with fix property/global: stiffness k_n (N/m) and either absolute

@@ -18,7 +18,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "dem_instance.h"
+#include "tfdem/particle_engine.h"
 
 const Foam::word Foam::TfdemCheckpoint::restartName("dem.restart");
 const Foam::word Foam::TfdemCheckpoint::markerName("tfdem.checkpoint");
@@ -384,7 +384,7 @@ Foam::ParticleTotals Foam::TfdemCheckpoint::startTotals() const
 
 void Foam::TfdemCheckpoint::verify
 (
-    const tfdem::DemInstance& dem,
+    const tfdem::ParticleEngine& dem,
     const ParticleTotals& totals
 ) const
 {
@@ -392,16 +392,16 @@ void Foam::TfdemCheckpoint::verify
     {
         return;
     }
-    const scalar demTime = dem.step()*dem.time_step();
+    const scalar demTime = dem.time();
     if
     (
         dem.step() != start_.dem_step
-     || std::abs(demTime - runTime_.value()) > 0.5*dem.time_step()
+     || std::abs(demTime - runTime_.value()) > 1e-6*runTime_.deltaTValue()
     )
     {
         FatalErrorInFunction
-            << directory(runTime_.timeName())/restartName << ": the DEM resumes at step "
-            << std::to_string(dem.step()).c_str() << " (t = " << demTime
+            << directory(runTime_.timeName())/restartName << ": " << dem.name().c_str()
+            << " resumes at step " << std::to_string(dem.step()).c_str() << " (t = " << demTime
             << " s) but the checkpoint was written at step "
             << std::to_string(start_.dem_step).c_str() << ", t = " << runTime_.timeName()
             << " s" << exit(FatalError);
@@ -503,7 +503,7 @@ std::vector<std::string> Foam::TfdemCheckpoint::gasFiles
 
 void Foam::TfdemCheckpoint::write
 (
-    tfdem::DemInstance& dem,
+    tfdem::ParticleEngine& dem,
     const ParticleTotals& totals,
     bool gasWritten
 )

@@ -94,9 +94,12 @@ Foam::TfdemCoupling::TfdemCoupling
     startDem();
     tfdemChecks::particles(config_, *dem_);
     tfdemChecks::packing(*dem_, g.value(), !checkpoint_.resuming());
-    tfdemChecks::gravity(g, *dem_);
-    tfdemChecks::timeSteps(mesh.time(), config_, *dem_, gasVelocity, g.value());
-    tfdemChecks::scene(config_, grid_.grid, *dem_, gasVelocity, g.value());
+    if (const auto* soft = dynamic_cast<const tfdem::DemInstance*>(dem_.get()))
+    {
+        tfdemChecks::gravity(g, *soft);
+        tfdemChecks::timeSteps(mesh.time(), config_, *soft, gasVelocity, g.value());
+        tfdemChecks::scene(config_, grid_.grid, *soft, gasVelocity, g.value());
+    }
     outlets_.reset
     (
         new TfdemOutlets
@@ -172,8 +175,8 @@ void Foam::TfdemCoupling::startDem()
         }
     }
     Info<< "TFDEM coupling: " << dem_->global_count() << " particles, DEM step "
-        << dem_->time_step() << " s, " << config_.coupling_interval
-        << " DEM steps per gas step" << nl << endl;
+        << static_cast<const tfdem::DemInstance&>(*dem_).time_step() << " s, "
+        << config_.coupling_interval << " DEM steps per gas step" << nl << endl;
 }
 
 
@@ -197,7 +200,7 @@ void Foam::TfdemCoupling::evolve()
     Clock::time_point start = Clock::now();
     const bool recordContacts = statistics_->due(runTime);
     tfdemFailure::enter(tfdemFailure::Phase::dem, runTime.value());
-    dem_->run(config_.coupling_interval, recordContacts);
+    dem_->advance(runTime.deltaTValue(), recordContacts);
     tfdemFailure::enter(tfdemFailure::Phase::coupling, runTime.value());
     const TfdemOutlets::Removed removed = outlets_->remove(*dem_);
     accounting_->check(*dem_, runTime.value(), removed.tags, removed.mass, demLog() + ".screen");

@@ -7,7 +7,7 @@
 #include <chrono>
 #include <cstdint>
 
-#include "dem_instance.h"
+#include "tfdem/particle_engine.h"
 
 namespace
 {
@@ -39,7 +39,7 @@ Foam::TfdemForceRecord::TfdemForceRecord(const fileName& file)
 
 void Foam::TfdemForceRecord::write
 (
-    const tfdem::DemInstance& dem,
+    const tfdem::ParticleEngine& dem,
     const std::vector<double>& force
 )
 {
@@ -56,7 +56,7 @@ void Foam::TfdemForceRecord::write
 }
 
 
-void Foam::TfdemForceRecord::report(const tfdem::DemInstance& dem) const
+void Foam::TfdemForceRecord::report(const tfdem::ParticleEngine& dem) const
 {
     double positionSum[3] = {0, 0, 0};
     for (std::size_t i = 0; i < 3*dem.local_count(); ++i)

@@ -4,7 +4,7 @@
 
 #include <mpi.h>
 
-#include "dem_instance.h"
+#include "tfdem/particle_engine.h"
 #include "tfdem/suggest.h"
 
 Foam::TfdemOutlets::TfdemOutlets
@@ -12,11 +12,11 @@ Foam::TfdemOutlets::TfdemOutlets
     const fvMesh& mesh,
     const std::vector<std::string>& names,
     const fileName& config,
-    const tfdem::DemInstance& dem,
+    tfdem::ParticleEngine& dem,
     double reach
 )
 {
-    const tfdem::DemInstance::Box box = dem.box();
+    const tfdem::ParticleEngine::Box box = dem.box();
     const boundBox domain(mesh.points(), true);
     std::vector<std::string> patchNames;
     for (const polyPatch& p : mesh.boundaryMesh())
@@ -64,6 +64,7 @@ Foam::TfdemOutlets::TfdemOutlets
                 << exit(FatalError);
         }
         const int side = o.side > 0 ? 1 : 0;
+        dem.open_outlet(o.axis, side);
         const double face = o.side > 0 ? box.upper[o.axis] : box.lower[o.axis];
         if (box.drops[o.axis][side] && (face - o.position)*o.side < reach)
         {
@@ -92,7 +93,7 @@ Foam::TfdemOutlets::TfdemOutlets
 }
 
 
-int Foam::TfdemOutlets::leftThrough(const tfdem::DemInstance& dem, std::size_t i) const
+int Foam::TfdemOutlets::leftThrough(const tfdem::ParticleEngine& dem, std::size_t i) const
 {
     const double* x = dem.positions() + 3*i;
     for (std::size_t k = 0; k < outlets_.size(); ++k)
@@ -116,7 +117,7 @@ int Foam::TfdemOutlets::leftThrough(const tfdem::DemInstance& dem, std::size_t i
 }
 
 
-Foam::TfdemOutlets::Removed Foam::TfdemOutlets::remove(tfdem::DemInstance& dem)
+Foam::TfdemOutlets::Removed Foam::TfdemOutlets::remove(tfdem::ParticleEngine& dem)
 {
     Removed removed;
     if (outlets_.empty())

@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <sstream>
 
-#include "dem_instance.h"
+#include "tfdem/particle_engine.h"
 
 namespace
 {
@@ -19,7 +19,7 @@ constexpr int namedLostParticles = 10;
 
 Foam::TfdemParticleAccounting::TfdemParticleAccounting
 (
-    const tfdem::DemInstance& dem,
+    const tfdem::ParticleEngine& dem,
     const ParticleTotals& start,
     scalar t
 )
@@ -33,7 +33,7 @@ Foam::TfdemParticleAccounting::TfdemParticleAccounting
 
 Foam::ParticleTotals Foam::TfdemParticleAccounting::count
 (
-    const tfdem::DemInstance& dem
+    const tfdem::ParticleEngine& dem
 ) const
 {
     double local[2] = {double(dem.local_count()), 0};
@@ -49,7 +49,7 @@ Foam::ParticleTotals Foam::TfdemParticleAccounting::count
 }
 
 
-void Foam::TfdemParticleAccounting::remember(const tfdem::DemInstance& dem, scalar t)
+void Foam::TfdemParticleAccounting::remember(const tfdem::ParticleEngine& dem, scalar t)
 {
     const std::size_t n = dem.local_count();
     lastTags_.assign(dem.tags(), dem.tags() + n);
@@ -61,7 +61,7 @@ void Foam::TfdemParticleAccounting::remember(const tfdem::DemInstance& dem, scal
 
 void Foam::TfdemParticleAccounting::check
 (
-    const tfdem::DemInstance& dem,
+    const tfdem::ParticleEngine& dem,
     scalar t,
     const std::vector<int>& removedTags,
     scalar removedMass,
@@ -100,7 +100,7 @@ void Foam::TfdemParticleAccounting::check
 
 std::string Foam::TfdemParticleAccounting::describeLost
 (
-    const tfdem::DemInstance& dem,
+    const tfdem::ParticleEngine& dem,
     const std::vector<int>& removedTags,
     label& lost
 ) const

@@ -119,7 +119,7 @@ void Foam::tfdemChecks::twoDimensionalDepth
 void Foam::tfdemChecks::particles
 (
     const tfdem::CouplingConfig& config,
-    const tfdem::DemInstance& dem
+    const tfdem::ParticleEngine& dem
 )
 {
     const std::size_t n = dem.local_count();
@@ -173,6 +173,9 @@ void Foam::tfdemChecks::particles
 namespace
 {
 
+// The deepest overlap, as a fraction of d, hard spheres start from without a warning
+constexpr double hardOverlapTolerated = 0.01;
+
 // Elastic energy (J) of an overlap `depth` between atom types a and b of radii ra, rb: linear
 // (1/2) k_n delta^2, Hertz (8/15) E* sqrt(R*) delta^(5/2) (the integral of the contact forces);
 // negative when the script gives neither model
@@ -208,7 +211,7 @@ double overlapEnergy
 
 void Foam::tfdemChecks::packing
 (
-    const tfdem::DemInstance& dem,
+    const tfdem::ParticleEngine& dem,
     const vector& g,
     bool freshStart
 )
@@ -264,8 +267,9 @@ void Foam::tfdemChecks::packing
     {
         return;
     }
+    const auto* soft = dynamic_cast<const tfdem::DemInstance*>(&dem);
     double energy = 0, lift = 0, smallest = GREAT;
-    bool known = true;
+    bool known = soft != nullptr;
     const tfdem::PackingCheck::Overlap* deepest = &check.overlaps.front();
     std::size_t deep = 0;
     for (const auto& o : check.overlaps)
@@ -273,7 +277,10 @@ void Foam::tfdemChecks::packing
         const double relative = o.depth/std::min(d[o.a], d[o.b]);
         if (relative > deepest->depth/std::min(d[deepest->a], d[deepest->b])) deepest = &o;
         if (relative > 0.01) ++deep;
-        const double e = overlapEnergy(dem, type[o.a], type[o.b], 0.5*d[o.a], 0.5*d[o.b], o.depth);
+        const double e =
+            soft
+          ? overlapEnergy(*soft, type[o.a], type[o.b], 0.5*d[o.a], 0.5*d[o.b], o.depth)
+          : -1;
         known = known && e >= 0;
         energy += e;
     }
@@ -293,6 +300,14 @@ void Foam::tfdemChecks::packing
             << " energy that lifts the whole bed by one diameter";
     }
     Info<< endl;
+    if (!soft && relative > hardOverlapTolerated)
+    {
+        Info<< "TFDEM warning: the initial packing's pairs overlap up to " << 100*relative
+            << " % of d (a soft-sphere packing?): hard spheres do not push them apart, they"
+            << " stay so until the pairs part (and count in the gas fraction). Pack the bed"
+            << " with stiffer contacts, or let it settle in the hard-sphere engine first"
+            << endl;
+    }
     if (known && lift > 0 && energy > lift)
     {
         Info<< "TFDEM warning: the initial packing stores more elastic energy in its overlaps"

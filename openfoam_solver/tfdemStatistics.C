@@ -7,7 +7,7 @@
 #include <cmath>
 #include <limits>
 
-#include "dem_instance.h"
+#include "tfdem/particle_engine.h"
 #include "tfdem/analysis.h"
 #include "tfdem/distributed_coupling.h"
 
@@ -118,7 +118,7 @@ bool Foam::TfdemStatistics::due(const Time& runTime) const
 void Foam::TfdemStatistics::writeSeriesRow
 (
     scalar t,
-    const tfdem::DemInstance& dem,
+    const tfdem::ParticleEngine& dem,
     const tfdem::ParticleView& p
 )
 {
@@ -267,7 +267,7 @@ void writeVtk
 void Foam::TfdemStatistics::record
 (
     const Time& runTime,
-    const tfdem::DemInstance& dem,
+    const tfdem::ParticleEngine& dem,
     const tfdem::ParticleView& p,
     const tfdem::DistributedCoupling& core
 )
