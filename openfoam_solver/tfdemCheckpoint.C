@@ -362,6 +362,7 @@ tfdem::DemResume Foam::TfdemCheckpoint::demResume() const
 {
     tfdem::DemResume r;
     r.step = start_.dem_step;
+    r.time = start_.time;
     if (start_.dem_restart)
     {
         r.restart_file = fileName(runTime_.timeName()/restartName);  // relative to the case

@@ -227,6 +227,43 @@ std::vector<double> ConfigSection::number_list(const std::string &key, double mi
   return out;
 }
 
+std::vector<double> ConfigSection::number_table(const std::string &key, std::vector<double> fallback, double min,
+                                                double max, bool required) {
+  const std::optional<YAML::Node> value = child(key, required);
+  if (!value) return fallback;
+  std::vector<double> out;
+  bool ok = true;
+  const auto add = [&](const YAML::Node &item) {
+    double v = 0;
+    try {
+      v = item.as<double>();
+    } catch (const YAML::Exception &) {
+      ok = false;
+      return;
+    }
+    if (not_a_number(v) || !(v >= min && v <= max)) {
+      problem(key, "value " + item.Scalar() + " is out of range [" + format_number(min) + ", " + format_number(max) +
+                       "]");
+      return;
+    }
+    out.push_back(v);
+  };
+  if (value->IsScalar()) {
+    add(*value);
+  } else if (value->IsSequence()) {
+    for (const auto &row : *value) {
+      if (row.IsSequence())
+        for (const auto &item : row) add(item);
+      else
+        add(row);
+    }
+  } else {
+    ok = false;
+  }
+  if (!ok) problem(key, "must be a number, a list of numbers or a list of lists (a matrix, row by row)");
+  return ok && !out.empty() ? out : fallback;
+}
+
 std::vector<std::string> ConfigSection::text_list(const std::string &key) {
   const std::optional<YAML::Node> value = child(key, false);
   if (!value) return {};
@@ -286,6 +323,38 @@ VoidFractionOptions read_void_fraction(ConfigSection &section) {
   return o;
 }
 
+const std::vector<std::string> &engine_names() {
+  static const std::vector<std::string> names = {"liggghts", "hard_sphere"};
+  return names;
+}
+
+HardSphereOptions read_hard_sphere(ConfigSection &section) {
+  HardSphereOptions o;
+  o.restitution = section.number_table("restitution", {}, 0, 1, true);
+  o.tangential_restitution = section.number_table("tangential_restitution", {}, 0, 1, true);
+  o.friction = section.number_table("friction", {}, 0, 1e3, true);
+  ConfigSection wall = section.section("wall");
+  const auto own = [](const std::vector<double> &particles) {
+    return particles.size() == 1 ? particles : std::vector<double>{};
+  };
+  o.wall_restitution = wall.number_table("restitution", own(o.restitution), 0, 1);
+  o.wall_tangential_restitution = wall.number_table("tangential_restitution", own(o.tangential_restitution), 0, 1);
+  o.wall_friction = wall.number_table("friction", own(o.friction), 0, 1e3);
+  for (const auto &[key, values] : {std::pair{"restitution", &o.wall_restitution},
+                                    std::pair{"tangential_restitution", &o.wall_tangential_restitution},
+                                    std::pair{"friction", &o.wall_friction}})
+    if (values->empty() && !wall.has(key))
+      wall.report(key, std::string("missing: the particles' ") + key + " is a matrix, so the walls' needs its " +
+                           "own value (one, or one per type)");
+  wall.reject_unknown_keys();
+  o.elastic_within = section.number("elastic_within", o.elastic_within, 0, 1);
+  o.max_collisions_per_particle = section.integer("max_collisions_per_particle", o.max_collisions_per_particle, 1,
+                                                  100000000);
+  o.contact_gap = section.number("contact_gap", o.contact_gap, 0, 1);
+  section.reject_unknown_keys();
+  return o;
+}
+
 OutputOptions read_output(ConfigSection &section) {
   OutputOptions o;
   o.statistics_interval = section.number("statistics_interval", 0.0, 0.0, 1e6);
@@ -308,11 +377,29 @@ CouplingConfig parse_coupling_config(const std::string &file, const std::string 
   c.particle_density = particles.number("density", 0.0, 1e-3, 1e5, true);
   particles.reject_unknown_keys();
   ConfigSection dem = root.section("dem", true);
-  c.dem_script = dem.text("script", "", true);
-  if (root.has("dem") && !dem.has("coupling_interval"))
-    dem.report("coupling_interval", "missing (required): the DEM steps per gas step, system/controlDict deltaT "
-                                    "divided by the DEM script's timestep");
-  c.coupling_interval = dem.integer("coupling_interval", 1, 1, 1000000);
+  const std::string engine = dem.choice("engine", "liggghts", engine_names());
+  c.engine = engine == "hard_sphere" ? Engine::HardSphere : Engine::Liggghts;
+  // each engine's own keys; the other's are refused by name
+  const auto refuse = [&dem, &engine](const char *key, const char *whose) {
+    if (dem.has(key))
+      dem.refuse(key, std::string("applies to the ") + whose + " engine, not to dem.engine: " + engine +
+                          "; remove the key");
+  };
+  if (c.engine == Engine::Liggghts) {
+    c.dem_script = dem.text("script", "", true);
+    if (root.has("dem") && !dem.has("coupling_interval"))
+      dem.report("coupling_interval", "missing (required): the DEM steps per gas step, system/controlDict deltaT "
+                                      "divided by the DEM script's timestep");
+    c.coupling_interval = dem.integer("coupling_interval", 1, 1, 1000000);
+    refuse("particles", "hard_sphere");
+    refuse("hard_sphere", "hard_sphere");
+  } else {
+    c.dem_particles = dem.text("particles", "", true);
+    ConfigSection hard = dem.section("hard_sphere", true);
+    c.hard_sphere = read_hard_sphere(hard);
+    refuse("script", "liggghts");
+    refuse("coupling_interval", "liggghts (the hard-sphere engine's flow step is the gas step)");
+  }
   c.outlets = dem.text_list("outlets");
   dem.reject_unknown_keys();
   ConfigSection coupling = root.section("coupling");
@@ -368,7 +455,30 @@ std::string describe(const CouplingConfig &c) {
          for (std::size_t k = 0; k < c.particle_diameters.size(); ++k) list << (k ? ", " : "") << c.particle_diameters[k];
          return list.str();
        }() << "]\n  density: " << c.particle_density << "\n"
-    << "dem:\n  script: " << c.dem_script << "\n  coupling_interval: " << c.coupling_interval << "\n"
+    << "dem:\n  engine: " << engine_names()[static_cast<int>(c.engine)] << "\n" << [&c] {
+         std::ostringstream dem;
+         dem.precision(10);
+         if (c.engine == Engine::Liggghts) {
+           dem << "  script: " << c.dem_script << "\n  coupling_interval: " << c.coupling_interval << "\n";
+           return dem.str();
+         }
+         const auto list = [](const std::vector<double> &v) {
+           std::ostringstream out;
+           out.precision(10);
+           out << "[";
+           for (std::size_t k = 0; k < v.size(); ++k) out << (k ? ", " : "") << v[k];
+           return out.str() + "]";
+         };
+         const HardSphereOptions &h = c.hard_sphere;
+         dem << "  particles: " << c.dem_particles << "\n  hard_sphere:\n    restitution: " << list(h.restitution)
+             << "\n    tangential_restitution: " << list(h.tangential_restitution) << "\n    friction: "
+             << list(h.friction) << "\n    wall:\n      restitution: " << list(h.wall_restitution)
+             << "\n      tangential_restitution: " << list(h.wall_tangential_restitution) << "\n      friction: "
+             << list(h.wall_friction) << "\n    elastic_within: " << h.elastic_within
+             << "\n    max_collisions_per_particle: " << h.max_collisions_per_particle
+             << "\n    contact_gap: " << h.contact_gap << "\n";
+         return dem.str();
+       }()
     << "  outlets: [" << [&c] {
          std::string list;
          for (const auto &o : c.outlets) list += (list.empty() ? "" : ", ") + o;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <unordered_map>
 #include <sstream>
 #include <stdexcept>
 
@@ -102,6 +103,89 @@ std::vector<std::string> atoms_outside_box(const std::string &text, const std::s
     }
   }
   return outside;
+}
+
+Atoms read_atoms(const std::string &text, const std::string &file) {
+  static const char *kAxis = "xyz";
+  Atoms atoms;
+  long declared = -1;
+  std::istringstream in(text);
+  std::string line, section;
+  std::getline(in, line);  // the title
+  int number = 1;
+  std::unordered_map<long, std::size_t> index;  // id -> atom, for the Velocities section
+  const auto numbers = [](const std::string &c, std::vector<double> &out) {
+    out.clear();
+    std::istringstream words(c);
+    for (std::string word; words >> word;) {
+      char *end = nullptr;
+      const double v = std::strtod(word.c_str(), &end);
+      if (end == word.c_str() || *end != '\0') return false;
+      out.push_back(v);
+    }
+    return true;
+  };
+  std::vector<double> v;
+  while (std::getline(in, line)) {
+    ++number;
+    const std::string c = content(line);
+    if (c.empty()) continue;
+    const std::string where = file + ":" + std::to_string(number) + ": ";
+    if (starts_section(c)) {
+      section = c.substr(0, c.find_first_of(" \t"));
+      continue;
+    }
+    if (section.empty()) {
+      std::istringstream words(c);
+      double a = 0, b = 0;
+      std::string w1, w2;
+      if (!(words >> a)) throw std::invalid_argument(where + "cannot read the header line '" + c + "'");
+      if (c.find("atom types") != std::string::npos) {
+        atoms.type_count = static_cast<int>(a);
+      } else if (c.find("atoms") != std::string::npos) {
+        declared = static_cast<long>(a);
+      } else {
+        for (int k = 0; k < 3; ++k)
+          if (c.find(std::string(1, kAxis[k]) + "lo " + kAxis[k] + "hi") != std::string::npos) {
+            if (!(words >> b)) throw std::invalid_argument(where + "cannot read the box bounds '" + c + "'");
+            atoms.lower[k] = a;
+            atoms.upper[k] = b;
+          }
+      }
+      continue;
+    }
+    if (section == "Atoms") {
+      if (!numbers(c, v) || v.size() < 7)
+        throw std::invalid_argument(where + "cannot read an atom (id type diameter density x y z) from '" + c + "'");
+      const int type = static_cast<int>(v[1]);
+      if (type < 1 || type > atoms.type_count)
+        throw std::invalid_argument(where + "atom type " + std::to_string(type) + " is not among the header's " +
+                                    std::to_string(atoms.type_count) + " atom types");
+      index.emplace(std::lround(v[0]), atoms.id.size());
+      atoms.id.push_back(static_cast<int>(std::lround(v[0])));
+      atoms.type.push_back(type);
+      atoms.diameter.push_back(v[2]);
+      atoms.density.push_back(v[3]);
+      atoms.position.insert(atoms.position.end(), {v[4], v[5], v[6]});
+      atoms.velocity.insert(atoms.velocity.end(), {0.0, 0.0, 0.0});
+      atoms.spin.insert(atoms.spin.end(), {0.0, 0.0, 0.0});
+    } else if (section == "Velocities") {
+      if (!numbers(c, v) || v.size() < 4)
+        throw std::invalid_argument(where + "cannot read a velocity (id vx vy vz [wx wy wz]) from '" + c + "'");
+      const long id = std::lround(v[0]);
+      const auto found = index.find(id);
+      if (found == index.end()) throw std::invalid_argument(where + "a velocity for atom " + std::to_string(id) +
+                                                            ", which the Atoms section does not have");
+      for (int k = 0; k < 3; ++k) {
+        atoms.velocity[3 * found->second + k] = v[1 + k];
+        if (v.size() >= 7) atoms.spin[3 * found->second + k] = v[4 + k];
+      }
+    }
+  }
+  if (declared < 0 || static_cast<long>(atoms.id.size()) != declared)
+    throw std::invalid_argument(file + ": the header declares " + std::to_string(declared) + " atoms, the Atoms " +
+                                "section holds " + std::to_string(atoms.id.size()) + " (cut short?)");
+  return atoms;
 }
 
 }  // namespace tfdem::data_file

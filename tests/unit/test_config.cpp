@@ -153,6 +153,62 @@ TEST(Config, CouplingIntervalIsRequired) {
   EXPECT_TRUE(contains(p, "dem.coupling_interval: missing (required): the DEM steps per gas step")) << p[0];
 }
 
+const char *kHardSphere = R"(gas:
+  density: 1.2
+  viscosity: 1.8e-5
+particles:
+  diameter: [0.0015, 0.0025]
+  density: 2526
+dem:
+  engine: hard_sphere
+  particles: bed.data
+  hard_sphere:
+    restitution: [[0.97, 0.96], [0.96, 0.95]]
+    tangential_restitution: 0.33
+    friction: 0.1
+    wall:
+      restitution: [0.9, 0.8]
+coupling:
+  transfer: per_particle_conservative
+)";
+
+TEST(Config, HardSphereEngine) {
+  const CouplingConfig c = parse_coupling_config("coupling.yaml", kHardSphere);
+  EXPECT_EQ(c.engine, Engine::HardSphere);
+  EXPECT_EQ(c.dem_particles, "bed.data");
+  EXPECT_EQ(c.hard_sphere.restitution, (std::vector<double>{0.97, 0.96, 0.96, 0.95}));  // row by row
+  EXPECT_EQ(c.hard_sphere.tangential_restitution, std::vector<double>{0.33});
+  EXPECT_EQ(c.hard_sphere.wall_restitution, (std::vector<double>{0.9, 0.8}));
+  EXPECT_EQ(c.hard_sphere.wall_friction, std::vector<double>{0.1});  // the particles' scalar
+  EXPECT_DOUBLE_EQ(c.hard_sphere.elastic_within, 1e-5);
+  const CouplingConfig again = parse_coupling_config("described.yaml", describe(c));
+  EXPECT_EQ(again.hard_sphere.restitution, c.hard_sphere.restitution);
+  EXPECT_EQ(again.hard_sphere.wall_tangential_restitution, std::vector<double>{0.33});
+}
+
+TEST(Config, EachEngineRefusesTheOthersKeys) {
+  const auto p = problems_of(replaced(kHardSphere, "  particles: bed.data\n", "  script: in.bed\n  coupling_interval: 10\n"));
+  EXPECT_TRUE(contains(p, "dem.particles: missing (required)"));
+  EXPECT_TRUE(contains(p, "dem.script: applies to the liggghts engine, not to dem.engine: hard_sphere"));
+  EXPECT_TRUE(contains(p, "dem.coupling_interval: applies to the liggghts (the hard-sphere engine's flow step is"));
+  const auto q = problems_of(replaced(kValid, "  coupling_interval: 50\n", "  coupling_interval: 50\n  particles: bed.data\n"));
+  ASSERT_EQ(q.size(), 1u);
+  EXPECT_TRUE(contains(q, "dem.particles: applies to the hard_sphere engine, not to dem.engine: liggghts")) << q[0];
+  const auto r = problems_of(replaced(kHardSphere, "engine: hard_sphere", "engine: hardsphere"));
+  EXPECT_TRUE(contains(r, "dem.engine: unknown value 'hardsphere' (did you mean 'hard_sphere'?)"));
+}
+
+TEST(Config, HardSphereCollisionModelChecked) {
+  const auto p = problems_of(replaced(replaced(kHardSphere, "    friction: 0.1\n", ""), "tangential_restitution: 0.33",
+                                      "tangential_restitution: 1.33"));
+  EXPECT_TRUE(contains(p, "dem.hard_sphere.friction: missing (required)"));
+  EXPECT_TRUE(contains(p, "dem.hard_sphere.tangential_restitution: value 1.33 is out of range [0, 1]"));
+  // a matrix for the particles needs the walls' own value
+  const auto q = problems_of(replaced(kHardSphere, "    wall:\n      restitution: [0.9, 0.8]\n", ""));
+  ASSERT_EQ(q.size(), 1u);
+  EXPECT_TRUE(contains(q, "dem.hard_sphere.wall.restitution: missing: the particles' restitution is a matrix")) << q[0];
+}
+
 TEST(Config, UnknownChoicesListValidOnes) {
   const auto p = problems_of(replaced(kValid, "drag_law: beetstra", "drag_law: wen_yu"));
   ASSERT_EQ(p.size(), 1u);

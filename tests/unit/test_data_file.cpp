@@ -51,6 +51,22 @@ TEST(DataFile, NonFiniteAtomIsNamed) {
   EXPECT_EQ(bad[0], "id 4 (line 7): its diameter or position is not a finite number ('4 1 0.002 2500 nan 0.5 0')");
 }
 
+TEST(DataFile, AtomsReadWithTheirVelocities) {
+  const Atoms a = read_atoms(kData, "bed.data");
+  EXPECT_EQ(a.type_count, 1);
+  EXPECT_EQ(a.upper[0], 0.15);
+  EXPECT_EQ(a.upper[1], 0.45);
+  ASSERT_EQ(a.id, (std::vector<int>{1, 2, 3}));
+  EXPECT_EQ(a.diameter[2], 0.0025);
+  EXPECT_EQ(a.density[0], 2526);
+  EXPECT_EQ(a.position[3], 0.16);  // atom 2's x
+  EXPECT_EQ(a.velocity, std::vector<double>(9, 0.0));  // atom 1's row holds zeros; 2 and 3 have none
+  const Atoms b = read_atoms(kData + std::string("2 0.1 -0.2 0 0 0 5\n"), "bed.data");
+  EXPECT_EQ(b.velocity[4], -0.2);
+  EXPECT_EQ(b.spin[5], 5);
+  EXPECT_THROW(read_atoms(kData.substr(0, kData.find("3 1 0.0025")), "bed.data"), std::invalid_argument);  // 2 of 3
+}
+
 TEST(DataFile, UnreadableAtomLineIsNamed) {
   std::size_t count = 0;
   try {

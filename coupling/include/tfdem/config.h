@@ -50,6 +50,10 @@ class ConfigSection {
   std::string text(const std::string &key, const std::string &fallback, bool required = false);
   // A list of numbers in [min, max] (a YAML sequence, or one number); empty when absent.
   std::vector<double> number_list(const std::string &key, double min, double max, bool required = false);
+  // A table of numbers in [min, max] row by row: one number, a list, or a list of lists (a
+  // matrix, flattened); `fallback` when absent and not required.
+  std::vector<double> number_table(const std::string &key, std::vector<double> fallback, double min, double max,
+                                   bool required = false);
   // A list of texts (a YAML sequence, or one text); empty when absent.
   std::vector<std::string> text_list(const std::string &key);
   // Text that must be one of `choices`.
@@ -59,6 +63,12 @@ class ConfigSection {
   bool has(const std::string &key) const;
   // Record a problem with `key` found by the caller's own check.
   void report(const std::string &key, const std::string &message) { problem(key, message); }
+  // A key that does not belong here, whatever its value: reported with `message`, not again as
+  // unknown.
+  void refuse(const std::string &key, const std::string &message) {
+    known_keys_.push_back(key);
+    problem(key, message);
+  }
   const std::string &path() const { return path_; }
 
  private:
@@ -90,8 +100,31 @@ struct OutputOptions {
   bool particles_vtk = true;
 };
 
+// The hard-sphere engine's collision model (coupling.yaml dem.hard_sphere; seed 001 eqs. 17-21):
+// normal restitution e_n, tangential restitution beta_0 and friction mu, between particle
+// types (one value for every pair, or an n x n matrix row by row) and against the walls (one
+// value, or one per type; the particles' own when the scalar is given and dem.hard_sphere.wall
+// is absent).
+struct HardSphereOptions {
+  std::vector<double> restitution, tangential_restitution, friction;
+  std::vector<double> wall_restitution, wall_tangential_restitution, wall_friction;
+  // TC model (Luding & McNamara 1998): a collision within this many seconds of either
+  // particle's previous one is elastic and smooth (0: off)
+  double elastic_within = 1e-5;
+  // Collisions per particle in one flow step above which the run stops (inelastic collapse)
+  long max_collisions_per_particle = 10000;
+  // N_c counts the pairs closer than this fraction of the smaller diameter (hard spheres
+  // touch only at the instant they collide)
+  double contact_gap = 0.01;
+};
+
+// The particle engine (coupling.yaml dem.engine).
+enum class Engine { Liggghts, HardSphere };
+const std::vector<std::string> &engine_names();
+
 // Module readers: each module owns its keys.
 drag::Gas read_gas(ConfigSection &section);
+HardSphereOptions read_hard_sphere(ConfigSection &section);
 VoidFractionOptions read_void_fraction(ConfigSection &section);
 OutputOptions read_output(ConfigSection &section);
 
@@ -103,8 +136,11 @@ struct CouplingConfig {
   // particle must have one of them; the 2-D rule's cell depth; the scene check uses the smallest.
   std::vector<double> particle_diameters;
   double particle_density = 0.0;   // rho_p (kg/m^3)
-  std::string dem_script;         // LIGGGHTS input, relative to the case directory
-  long coupling_interval = 1;     // DEM steps per gas step
+  Engine engine = Engine::Liggghts;
+  std::string dem_script;         // liggghts: the LIGGGHTS input, relative to the case directory
+  long coupling_interval = 1;     // liggghts: DEM steps per gas step
+  std::string dem_particles;      // hard_sphere: the particles' LIGGGHTS data file
+  HardSphereOptions hard_sphere;  // hard_sphere: the collision model
   std::vector<std::string> outlets;  // gas patches through which particles leave the DEM
   TransferOptions transfer;       // method, drag law, gas
   VoidFractionOptions void_fraction;

@@ -26,6 +26,20 @@ Boundary boundary_from_words(const std::vector<std::string> &words);
 std::vector<std::string> atoms_outside_box(const std::string &text, const std::string &file, const Boundary &boundary,
                                            std::size_t limit, std::size_t &count);
 
+// The atoms of a data file (atom_style sphere / granular) as a particle engine other than
+// LIGGGHTS reads them: the box of its header, its atom type count, and per atom its ID, type,
+// diameter, density, position and, from the Velocities section when it has one (id vx vy vz
+// wx wy wz), velocity and spin (else zero). Throws std::invalid_argument "file:line: ..." for a
+// line it cannot read, an atom count that differs from the header's, or a type beyond it.
+struct Atoms {
+  double lower[3] = {0, 0, 0}, upper[3] = {0, 0, 0};
+  int type_count = 0;
+  std::vector<int> id, type;
+  std::vector<double> diameter, density;
+  std::vector<double> position, velocity, spin;  // 3 per atom
+};
+Atoms read_atoms(const std::string &text, const std::string &file);
+
 }  // namespace tfdem::data_file
 
 #endif

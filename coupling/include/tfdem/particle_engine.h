@@ -22,6 +22,7 @@ using OutputSize = std::pair<std::string, std::uint64_t>;
 struct DemResume {
   std::string restart_file;          // the engine's restart file; "" when the bed had emptied
   long long step = 0;                // the engine's step at the checkpoint
+  double time = 0;                   // and its simulated time (s)
   std::vector<OutputSize> outputs;   // the engine's output files at the checkpoint
 };
 

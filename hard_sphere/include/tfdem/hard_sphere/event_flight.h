@@ -61,6 +61,8 @@ class EventFlight {
   // pair_laws[a * type_count + b] (symmetric), wall_laws[a]
   EventFlight(const WallBox &box, int type_count, std::vector<CollisionLaw> pair_laws,
               std::vector<CollisionLaw> wall_laws, double elastic_within, long max_collisions_per_particle);
+  // No particles in the unit box, elastic and smooth (to be assigned a flight)
+  EventFlight() : EventFlight(WallBox{}, 1, {CollisionLaw{}}, {CollisionLaw{}}, 0, 1) {}
 
   // Move every particle over `dt` seconds from the clock on, colliding as they meet; the
   // clock advances by dt. Throws std::runtime_error for more collisions than the bound.
@@ -73,6 +75,8 @@ class EventFlight {
   void add(const Vec3 &x, const Vec3 &v, const Vec3 &w, double r, double m, int type);
   void remove(std::vector<std::size_t> indices);
   const WallBox &box() const { return box_; }
+  // Open a face of the box (no wall there: an outlet)
+  void open(int axis, int side) { box_.wall[axis][side] = false; }
 
  private:
   struct Event {
