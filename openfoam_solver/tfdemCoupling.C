@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "dem_instance.h"
+#include "tfdem/hard_sphere/engine.h"
 #include "tfdem/distributed_coupling.h"
 #include "tfdemFailure.H"
 #include "tfdemOutlets.H"
@@ -91,7 +92,7 @@ Foam::TfdemCoupling::TfdemCoupling
             config_.void_fraction, config_.transfer
         )
     );
-    startDem();
+    startDem(g.value());
     tfdemChecks::particles(config_, *dem_);
     tfdemChecks::packing(*dem_, g.value(), !checkpoint_.resuming());
     if (const auto* soft = dynamic_cast<const tfdem::DemInstance*>(dem_.get()))
@@ -145,19 +146,47 @@ Foam::fileName Foam::TfdemCoupling::demLog() const
 }
 
 
-void Foam::TfdemCoupling::startDem()
+void Foam::TfdemCoupling::startDem(const vector& g)
 {
-    // The script by its name in coupling.yaml: the case is the working directory (TfdemCase)
+    // Files by their names in coupling.yaml: the case is the working directory (TfdemCase)
     const tfdem::DemResume resume = checkpoint_.demResume();
+    const tfdem::DemResume* resumed = checkpoint_.resuming() ? &resume : nullptr;
+    if (config_.engine == tfdem::Engine::HardSphere)
+    {
+        if (TfdemRanks::count() > 1)
+        {
+            FatalErrorInFunction
+                << config_.file.c_str() << ": dem.engine: hard_sphere runs on one rank (its"
+                << " event-driven collisions are processed one after another), not on "
+                << TfdemRanks::count() << ": run tfdemFoam without mpirun, or use dem.engine:"
+                << " liggghts" << exit(FatalError);
+        }
+        const double gravity[3] = {g.x(), g.y(), g.z()};
+        try
+        {
+            dem_.reset
+            (
+                new tfdem::hard_sphere::HardSphereEngine
+                (
+                    config_.hard_sphere, config_.dem_particles, gravity, resumed
+                )
+            );
+        }
+        catch (const std::exception& e)
+        {
+            FatalErrorInFunction << config_.file.c_str() << ": " << e.what() << exit(FatalError);
+        }
+        Info<< "TFDEM coupling: " << dem_->global_count() << " particles in "
+            << dem_->name().c_str() << " (" << config_.dem_particles.c_str() << "), one flow step"
+            << " per gas step of " << mesh_.time().deltaTValue() << " s, gravity " << g
+            << " m/s^2 (constant/g)" << nl << endl;
+        return;
+    }
     try
     {
         dem_.reset
         (
-            new tfdem::DemInstance
-            (
-                demComm_, config_.dem_script, demLog(),
-                checkpoint_.resuming() ? &resume : nullptr
-            )
+            new tfdem::DemInstance(demComm_, config_.dem_script, demLog(), resumed)
         );
     }
     catch (const std::exception& e)
@@ -349,6 +378,15 @@ void Foam::TfdemCoupling::write(bool gasWritten)
 
 void Foam::TfdemCoupling::report() const
 {
+    if (const auto* hard = dynamic_cast<const tfdem::hard_sphere::HardSphereEngine*>(dem_.get()))
+    {
+        const tfdem::hard_sphere::FlightCounts& c = hard->totals();
+        Info<< "TFDEM hard spheres: " << label(c.pair) << " pair and " << label(c.wall)
+            << " wall collisions (" << label(c.elastic) << " made elastic by the TC model), "
+            << label(c.predictions) << " event predictions, " << label(c.list_builds)
+            << " neighbour lists built over " << std::to_string(hard->step()).c_str()
+            << " flow steps" << endl;
+    }
     report_.report
     (
         core_->totals(),

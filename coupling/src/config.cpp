@@ -351,6 +351,7 @@ HardSphereOptions read_hard_sphere(ConfigSection &section) {
   o.max_collisions_per_particle = section.integer("max_collisions_per_particle", o.max_collisions_per_particle, 1,
                                                   100000000);
   o.contact_gap = section.number("contact_gap", o.contact_gap, 0, 1);
+  o.move = section.boolean("move", o.move);
   section.reject_unknown_keys();
   return o;
 }
@@ -476,7 +477,7 @@ std::string describe(const CouplingConfig &c) {
              << "\n      tangential_restitution: " << list(h.wall_tangential_restitution) << "\n      friction: "
              << list(h.wall_friction) << "\n    elastic_within: " << h.elastic_within
              << "\n    max_collisions_per_particle: " << h.max_collisions_per_particle
-             << "\n    contact_gap: " << h.contact_gap << "\n";
+             << "\n    contact_gap: " << h.contact_gap << "\n    move: " << (h.move ? "true" : "false") << "\n";
          return dem.str();
        }()
     << "  outlets: [" << [&c] {

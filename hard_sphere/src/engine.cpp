@@ -89,7 +89,7 @@ void HardSphereEngine::set_laws(const HardSphereOptions &o, const std::string &s
 
 HardSphereEngine::HardSphereEngine(const HardSphereOptions &options, const std::string &data_file,
                                    const double gravity[3], const DemResume *resume)
-    : gravity_{gravity[0], gravity[1], gravity[2]}, contact_gap_(options.contact_gap) {
+    : gravity_{gravity[0], gravity[1], gravity[2]}, contact_gap_(options.contact_gap), move_(options.move) {
   if (resume && !resume->restart_file.empty()) {
     read_restart(resume->restart_file, options);
   } else {
@@ -109,6 +109,22 @@ HardSphereEngine::HardSphereEngine(const HardSphereOptions &options, const std::
       box.upper[a] = atoms.upper[a];
     }
     type_count_ = atoms.type_count;
+    std::string outside;
+    int outside_count = 0;
+    for (std::size_t i = 0; i < atoms.id.size(); ++i)
+      for (int a = 0; a < 3; ++a) {
+        const double x = atoms.position[3 * i + a], r = atoms.diameter[i] / 2;
+        if (x - r >= box.lower[a] - 1e-12 * r && x + r <= box.upper[a] + 1e-12 * r) continue;
+        if (++outside_count <= 10)
+          outside += "\n  id " + std::to_string(atoms.id[i]) + ": " + "xyz"[a] + " = " + std::to_string(x) +
+                     " m, radius " + std::to_string(r) + " m, box " + std::to_string(box.lower[a]) + " to " +
+                     std::to_string(box.upper[a]) + " m";
+        break;
+      }
+    if (outside_count)
+      throw std::runtime_error("dem.particles: " + data_file + ": " + std::to_string(outside_count) +
+                               " particle(s) not wholly inside the box of its header, whose faces are the hard-sphere "
+                               "engine's walls:" + outside + "\nFix: move them inside, or widen the box");
     flight_ = EventFlight(box, 1, {CollisionLaw{}}, {CollisionLaw{}}, 0, 1);
     set_laws(options, data_file);
     constexpr double kPi = 3.14159265358979323846;
@@ -137,6 +153,12 @@ HardSphereEngine::HardSphereEngine(const HardSphereOptions &options, const std::
 
 void HardSphereEngine::advance(double seconds, bool sample) {
   const std::size_t n = flight_.size();
+  if (!move_) {  // a fixed bed: only the clock moves
+    flight_.set_clock(flight_.clock() + seconds);
+    ++step_;
+    if (sample) sample_contacts(seconds);
+    return;
+  }
   const auto kick = [&] {
     for (std::size_t i = 0; i < n; ++i)
       flight_.velocity[i] += (0.5 * seconds) * (gravity_ + (1 / flight_.mass[i]) * fluid_force_[i]);

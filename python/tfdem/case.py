@@ -614,6 +614,11 @@ def set_yaml_value(path, dotted, value):
         if last:
             comment = re.search(r"\s+#.*$", lines[found])
             lines[found] = f"{indent}{key}: {text_value}" + (comment.group(0) if comment else "")
+            # the old value's own lines (a block list or mapping under the key) go with it
+            rest = found + 1
+            while rest < len(lines) and lines[rest].strip() and (
+                    lines[rest].startswith(indent + " ") or lines[rest].startswith(indent + "- ")):
+                del lines[rest]
             break
         start = found + 1
         end = next((i for i in range(start, len(lines))

@@ -72,6 +72,12 @@ def main():
           and case.coupling_value("dem.outlets") == ["top"] and case.coupling_value("output.statistics_interval") == 0.01
           and case.coupling_value("dem.coupling_interval") == 10, text)
     check("yaml edited: comments kept", "# a case" in text and "# the DEM" in text)
+    # a key whose old value is a block list (as yaml.safe_dump writes one) takes the new value alone
+    listed = Case(os.path.join(root, "listed"))
+    write(listed.file("coupling.yaml"), "dem:\n  outlets:\n  - outlet\n  - side\n  engine: hard_sphere\n")
+    set_yaml_value(listed.file("coupling.yaml"), "dem.outlets", [])
+    check("yaml edited: a block list replaced whole", listed.coupling_value("dem.outlets") == []
+          and listed.coupling_value("dem.engine") == "hard_sphere", open(listed.file("coupling.yaml")).read())
 
     # Time steps: DEM 2e-5 s and gas 5e-4 s give 25 DEM steps per gas step; 3e-5 s is 1.5 steps
     write(case.file("in.bed"), "units si\ntimestep        1e-5\nrun 0\n")

@@ -113,9 +113,12 @@ struct HardSphereOptions {
   double elastic_within = 1e-5;
   // Collisions per particle in one flow step above which the run stops (inelastic collapse)
   long max_collisions_per_particle = 10000;
-  // N_c counts the pairs closer than this fraction of the smaller diameter (hard spheres
+  // N_c counts the pairs closer than this fraction of their mean diameter (hard spheres
   // touch only at the instant they collide)
   double contact_gap = 0.01;
+  // false: the particles stay where they are (a fixed bed, as a LIGGGHTS script without
+  // time integration)
+  bool move = true;
 };
 
 // The particle engine (coupling.yaml dem.engine).

@@ -73,6 +73,7 @@ class HardSphereEngine : public ParticleEngine {
   std::vector<int> coordination_;
   Vec3 gravity_;
   double contact_gap_ = 0;
+  bool move_ = true;
   int type_count_ = 0;
   long long step_ = 0;
   FlightCounts totals_;
