@@ -179,7 +179,17 @@ void Foam::TfdemCoupling::startDem(const vector& g)
         Info<< "TFDEM coupling: " << dem_->global_count() << " particles in "
             << dem_->name().c_str() << " (" << config_.dem_particles.c_str() << "), one flow step"
             << " per gas step of " << mesh_.time().deltaTValue() << " s, gravity " << g
-            << " m/s^2 (constant/g)" << nl << endl;
+            << " m/s^2 (constant/g)" << endl;
+        const auto& hard = static_cast<const tfdem::hard_sphere::HardSphereEngine&>(*dem_);
+        if (hard.overlaps().pairs + hard.overlaps().walls > 0)
+        {
+            Info<< "TFDEM hard spheres: " << label(hard.overlaps().pairs) << " overlapping pairs"
+                << " and " << label(hard.overlaps().walls) << " spheres into a wall in "
+                << config_.dem_particles.c_str() << " (deepest "
+                << 100*hard.overlaps().deepest << " % of a diameter) taken as touching where"
+                << " they are" << endl;
+        }
+        Info<< endl;
         return;
     }
     try
@@ -229,7 +239,20 @@ void Foam::TfdemCoupling::evolve()
     Clock::time_point start = Clock::now();
     const bool recordContacts = statistics_->due(runTime);
     tfdemFailure::enter(tfdemFailure::Phase::dem, runTime.value());
-    dem_->advance(runTime.deltaTValue(), recordContacts);
+    try
+    {
+        dem_->advance(runTime.deltaTValue(), recordContacts);
+    }
+    catch (const std::exception& e)
+    {
+        FatalErrorInFunction
+            << "at t = " << runTime.value() << " s, " << dem_->name().c_str() << ": " << e.what()
+            << (config_.engine == tfdem::Engine::HardSphere
+              ? ". Fix: a longer TC time (dem.hard_sphere.elastic_within) keeps dense clusters"
+                " from collapsing; or run the bed with dem.engine: liggghts (soft spheres)"
+              : "")
+            << exit(FatalError);
+    }
     tfdemFailure::enter(tfdemFailure::Phase::coupling, runTime.value());
     const TfdemOutlets::Removed removed = outlets_->remove(*dem_);
     accounting_->check(*dem_, runTime.value(), removed.tags, removed.mass, demLog() + ".screen");

@@ -113,18 +113,18 @@ HardSphereEngine::HardSphereEngine(const HardSphereOptions &options, const std::
     int outside_count = 0;
     for (std::size_t i = 0; i < atoms.id.size(); ++i)
       for (int a = 0; a < 3; ++a) {
-        const double x = atoms.position[3 * i + a], r = atoms.diameter[i] / 2;
-        if (x - r >= box.lower[a] - 1e-12 * r && x + r <= box.upper[a] + 1e-12 * r) continue;
+        // a centre outside; a sphere sunk into a wall (a soft-sphere packing) is tolerated
+        const double x = atoms.position[3 * i + a];
+        if (x >= box.lower[a] && x <= box.upper[a]) continue;
         if (++outside_count <= 10)
           outside += "\n  id " + std::to_string(atoms.id[i]) + ": " + "xyz"[a] + " = " + std::to_string(x) +
-                     " m, radius " + std::to_string(r) + " m, box " + std::to_string(box.lower[a]) + " to " +
-                     std::to_string(box.upper[a]) + " m";
+                     " m, box " + std::to_string(box.lower[a]) + " to " + std::to_string(box.upper[a]) + " m";
         break;
       }
     if (outside_count)
       throw std::runtime_error("dem.particles: " + data_file + ": " + std::to_string(outside_count) +
-                               " particle(s) not wholly inside the box of its header, whose faces are the hard-sphere "
-                               "engine's walls:" + outside + "\nFix: move them inside, or widen the box");
+                               " particle(s) with the centre outside the box of its header, whose faces are the "
+                               "hard-sphere engine's walls:" + outside + "\nFix: move them inside, or widen the box");
     flight_ = EventFlight(box, 1, {CollisionLaw{}}, {CollisionLaw{}}, 0, 1);
     set_laws(options, data_file);
     constexpr double kPi = 3.14159265358979323846;
@@ -136,6 +136,7 @@ HardSphereEngine::HardSphereEngine(const HardSphereOptions &options, const std::
       tags_.push_back(atoms.id[i]);
       types_.push_back(atoms.type[i]);
     }
+    if (!resume) overlaps_ = flight_.tolerate_overlaps();
     if (resume) {  // the bed had emptied: its particles left, the clock goes on
       flight_.remove([&] {
         std::vector<std::size_t> all(flight_.size());
@@ -251,6 +252,13 @@ bool HardSphereEngine::write_restart(const std::string &path) {
         for (int a = 0; a < 3; ++a) put(out, (*v)[a]);
       put(out, flight_.last_collision[i]);
     }
+    const std::uint64_t tolerated = flight_.tolerated().size();
+    put(out, tolerated);
+    for (const auto &[key, distance] : flight_.tolerated()) {
+      put(out, key);
+      put(out, distance);
+    }
+    for (const double reach : flight_.wall_reach()) put(out, reach);
     out.write(kMagic, sizeof kMagic);  // the end: a file cut short lacks it
     out.close();
     if (!out) throw std::runtime_error("the hard-sphere restart file '" + partial + "' could not be written: " +
@@ -260,6 +268,7 @@ bool HardSphereEngine::write_restart(const std::string &path) {
   if (!unsynced.empty()) throw std::runtime_error("'" + partial + "' cannot be synced to disk: " + unsynced);
   if (std::rename(partial.c_str(), path.c_str()) != 0)
     throw std::runtime_error("cannot rename '" + partial + "' to '" + path + "': " + std::strerror(errno));
+  flight_.invalidate_lists();  // the next step builds them, as a run resumed from this file does
   return true;
 }
 
@@ -301,9 +310,22 @@ void HardSphereEngine::read_restart(const std::string &path, const HardSphereOpt
     types_.push_back(type);
     fluid_force_.push_back(f);
   }
+  std::uint64_t tolerated = 0;
+  get(in, tolerated);
+  std::unordered_map<std::uint64_t, double> pairs;
+  for (std::uint64_t k = 0; k < tolerated && in; ++k) {
+    std::uint64_t key = 0;
+    double distance = 0;
+    get(in, key);
+    get(in, distance);
+    pairs[key] = distance;
+  }
+  std::vector<double> reach(6 * n);
+  for (double &r : reach) get(in, r);
   in.read(magic, sizeof magic);
   if (!in || std::memcmp(magic, kMagic, sizeof kMagic) != 0)
     throw std::runtime_error("'" + path + "' is cut short: it ends before its " + std::to_string(n) + " particles");
+  flight_.restore_tolerated(std::move(pairs), std::move(reach));
   flight_.set_clock(clock);
 }
 

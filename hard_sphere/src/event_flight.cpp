@@ -19,6 +19,10 @@ constexpr double kSpeedAllowance = 1.5;
 // The least skin, in largest diameters: lists that serve several flow steps of a slow bed
 constexpr double kSkinDiameters = 0.25;
 
+std::uint64_t pair_key(int i, int j) {
+  return (static_cast<std::uint64_t>(std::min(i, j)) << 32) | static_cast<std::uint32_t>(std::max(i, j));
+}
+
 template <typename T>
 void keep(std::vector<T> &values, const std::vector<char> &drop) {
   std::size_t out = 0;
@@ -54,6 +58,7 @@ void EventFlight::add(const Vec3 &x, const Vec3 &v, const Vec3 &w, double r, dou
   type.push_back(t);
   impulse.push_back({});
   last_collision.push_back(-std::numeric_limits<double>::infinity());
+  reach_.insert(reach_.end(), 6, r);
   lists_built_ = false;
 }
 
@@ -68,7 +73,62 @@ void EventFlight::remove(std::vector<std::size_t> indices) {
   keep(type, drop);
   keep(impulse, drop);
   keep(last_collision, drop);
+  std::vector<char> drop_reach(reach_.size());
+  for (std::size_t i = 0; i < drop.size(); ++i)
+    for (int p = 0; p < 6; ++p) drop_reach[6 * i + p] = drop[i];
+  keep(reach_, drop_reach);
+  if (!tolerated_.empty()) {  // renumber the tolerated pairs
+    std::vector<int> renumbered(drop.size(), -1);
+    int next = 0;
+    for (std::size_t i = 0; i < drop.size(); ++i)
+      if (!drop[i]) renumbered[i] = next++;
+    std::unordered_map<std::uint64_t, double> kept;
+    for (const auto &[key, distance] : tolerated_) {
+      const int i = renumbered[key >> 32], j = renumbered[key & 0xffffffffu];
+      if (i >= 0 && j >= 0) kept[pair_key(i, j)] = distance;
+    }
+    tolerated_.swap(kept);
+  }
   lists_built_ = false;
+}
+
+void EventFlight::restore_tolerated(std::unordered_map<std::uint64_t, double> pairs, std::vector<double> reach) {
+  if (reach.size() != 6 * size())
+    throw std::invalid_argument("EventFlight::restore_tolerated: " + std::to_string(reach.size()) +
+                                " wall reaches for " + std::to_string(size()) + " particles");
+  tolerated_ = std::move(pairs);
+  reach_ = std::move(reach);
+  lists_built_ = false;
+}
+
+EventFlight::Overlaps EventFlight::tolerate_overlaps() {
+  Overlaps o;
+  const int n = static_cast<int>(size());
+  time_.assign(n, 0);
+  path_.assign(n, 0);
+  build_lists(0, 0);
+  for (int i = 0; i < n; ++i) {
+    for (int k = first_[i]; k < first_[i + 1]; ++k) {
+      const int j = partners_[k];
+      if (j <= i) continue;
+      const double sigma = radius[i] + radius[j], distance = norm(nearest(position[i] - position[j]));
+      if (distance >= sigma) continue;
+      tolerated_[pair_key(i, j)] = distance;
+      ++o.pairs;
+      o.deepest = std::max(o.deepest, (sigma - distance) / (2 * std::min(radius[i], radius[j])));
+    }
+    for (int a = 0; a < 3; ++a)
+      for (int side = 0; side < 2; ++side) {
+        if (!box_.wall[a][side] || box_.periodic[a]) continue;
+        const double gap = side == 0 ? position[i][a] - box_.lower[a] : box_.upper[a] - position[i][a];
+        if (gap >= radius[i]) continue;
+        reach_[6 * i + 2 * a + side] = std::max(gap, 0.0);
+        ++o.walls;
+        o.deepest = std::max(o.deepest, (radius[i] - gap) / (2 * radius[i]));
+      }
+  }
+  lists_built_ = false;  // built again with the contact distances
+  return o;
 }
 
 void EventFlight::advance_to(int i, double t) {
@@ -151,6 +211,27 @@ void EventFlight::build_lists(double now, double end) {
   }
   first_.assign(n + 1, 0);
   partners_.clear();
+  contact_.clear();
+  // tolerated overlaps: the contact distance grows to the present distance as the pair parts;
+  // those that have parted are forgotten; the same for the spheres' reach towards the walls
+  for (auto it = tolerated_.begin(); it != tolerated_.end();) {
+    const int i = static_cast<int>(it->first >> 32), j = static_cast<int>(it->first & 0xffffffffu);
+    const double distance = norm(nearest(position[i] - position[j]));
+    if (distance >= radius[i] + radius[j]) {
+      it = tolerated_.erase(it);
+    } else {
+      it->second = std::max(it->second, distance);
+      ++it;
+    }
+  }
+  for (int i = 0; i < n; ++i)
+    for (int a = 0; a < 3; ++a)
+      for (int side = 0; side < 2; ++side) {
+        double &reach = reach_[6 * i + 2 * a + side];
+        if (reach >= radius[i]) continue;
+        const double gap = side == 0 ? position[i][a] - box_.lower[a] : box_.upper[a] - position[i][a];
+        reach = std::min(radius[i], std::max(reach, gap));
+      }
   for (int i = 0; i < n; ++i) {
     const int ci[3] = {cell[i] % cells[0], (cell[i] / cells[0]) % cells[1], cell[i] / (cells[0] * cells[1])};
     for (int dz = -1; dz <= 1; ++dz)
@@ -169,7 +250,14 @@ void EventFlight::build_lists(double now, double end) {
             if (j == i) continue;
             const Vec3 r = nearest(position[i] - position[j]);
             const double within = radius[i] + radius[j] + skin;
-            if (dot(r, r) < within * within) partners_.push_back(j);
+            if (dot(r, r) >= within * within) continue;
+            partners_.push_back(j);
+            double sigma = radius[i] + radius[j];
+            if (!tolerated_.empty()) {
+              const auto found = tolerated_.find(pair_key(i, j));
+              if (found != tolerated_.end()) sigma = found->second;
+            }
+            contact_.push_back(sigma);
           }
         }
     first_[i + 1] = static_cast<int>(partners_.size());
@@ -188,7 +276,7 @@ void EventFlight::predict(int i, double now, double end) {
     const Vec3 u = vi - velocity[j];
     const double b = dot(r, u);
     if (b >= 0) continue;  // moving apart
-    const double sigma = radius[i] + radius[j];
+    const double sigma = contact_[k];
     const double c = dot(r, r) - sigma * sigma;
     double t = 0;  // touching or overlapping, and approaching: now
     if (c > 0) {
@@ -206,7 +294,8 @@ void EventFlight::predict(int i, double now, double end) {
       if (!box_.wall[a][side] || box_.periodic[a]) continue;
       const double towards = side == 0 ? -vi[a] : vi[a];
       if (towards <= 0) continue;
-      const double gap = side == 0 ? xi[a] - box_.lower[a] - radius[i] : box_.upper[a] - xi[a] - radius[i];
+      const double reach = reach_[6 * i + 2 * a + side];
+      const double gap = side == 0 ? xi[a] - box_.lower[a] - reach : box_.upper[a] - xi[a] - reach;
       const double t = gap > 0 ? gap / towards : 0;
       if (now + t < best) {
         best = now + t;

@@ -524,7 +524,7 @@ RESTART = [
     ("marker garbage", in_checkpoint("tfdem.checkpoint", lambda p: open(p, "wb").write(os.urandom(200))),
      ["the checkpoint marker cannot be read"]),
     ("marker's DEM step edited", marker_edit(r"demStep\s+\d+;", "demStep          150;"),
-     ["the DEM resumes at step 200", "written at step 150"]),
+     ["LIGGGHTS resumes at step 200", "written at step 150"]),
     ("marker's particle count edited", marker_edit(r"particles\s+1;", "particles        2;"),
      ["holds 1 particles", "written with 2 particles"]),
     ("killed while writing the DEM restart", killed_while_writing,

@@ -73,20 +73,28 @@ TEST(HardSphereEngine, ReboundsFromAFloorToENSquaredOfItsDrop) {
   }
 }
 
-// Eight spheres 1 mm apart just above the floor, thrown sideways at 0.5 m/s in turns: stopped
-// after 0.05 s and resumed from the restart file, the next 0.05 s end exactly where the
-// straight run's do.
+// Two spheres on the floor overlapping by 0.2 mm and sunk 0.1 mm into it (as a soft packing
+// leaves them), the second drifting away at 1 mm/s, and a third thrown at them at 0.2 m/s
+// that strikes after the checkpoint and drives the pair together again while they still
+// overlap, with five more thrown sideways in turns: stopped after 0.05 s and resumed from the
+// restart file, the next 0.05 s end exactly where the straight run's do (the pair's contact
+// distance and the floor's reach kept as tolerated).
 TEST(HardSphereEngine, ResumesBitForBit) {
+  const double x[8] = {0.05, 0.0538, 0.0688, 0.01, 0.015, 0.02, 0.025, 0.03};
+  const double y[8] = {0.0019, 0.0019, 0.0025, 0.003, 0.008, 0.013, 0.003, 0.008};
+  const double u[8] = {0, 0.001, -0.2, 0.2, -0.2, 0.2, -0.2, 0.2};
   std::string atoms, velocities;
   for (int k = 0; k < 8; ++k) {
     char line[128];
-    std::snprintf(line, sizeof line, "%d 1 0.004 2500 %g %g 0.005\n", k + 1, 0.01 + 0.005 * k, 0.003 + 0.005 * (k % 3));
+    std::snprintf(line, sizeof line, "%d 1 0.004 2500 %g %g 0.005\n", k + 1, x[k], y[k]);
     atoms += line;
-    std::snprintf(line, sizeof line, "%d %g 0 0 0 0 0\n", k + 1, k % 2 ? -0.5 : 0.5);
+    std::snprintf(line, sizeof line, "%d %g 0 0 0 0 0\n", k + 1, u[k]);
     velocities += line;
   }
   const std::string file = data_file("box.data", atoms, 8, 1, velocities);
   HardSphereEngine straight(laws(0.9), file, kGravity), first(laws(0.9), file, kGravity);
+  EXPECT_EQ(straight.overlaps().pairs, 1u);
+  EXPECT_EQ(straight.overlaps().walls, 2u);
   const std::vector<double> force(24, 1e-5);
   straight.set_fluid_force(force);
   first.set_fluid_force(force);
@@ -96,6 +104,7 @@ TEST(HardSphereEngine, ResumesBitForBit) {
   }
   const std::string restart = ::testing::TempDir() + "box.restart";
   ASSERT_TRUE(first.write_restart(restart));
+  ASSERT_TRUE(straight.write_restart(restart + ".straight"));  // a straight run checkpoints too
   DemResume resume;
   resume.restart_file = restart;
   resume.step = first.step();

@@ -9,6 +9,9 @@
 // half kick, so its impact speed is off by at most a dt/2 (Hoomans et al. 1996 apply the
 // whole impulse at the step's start, an error twice as large).
 //
+// A fresh start takes the data file's overlaps (a soft-sphere packing's) as touching where
+// they are (EventFlight::tolerate_overlaps), so the packing is kept exactly.
+//
 // One rank (serial); N_c counts the pairs closer than contact_gap of their mean diameter, and
 // a particle's contact force is its collisions' impulse over the last step divided by the
 // step (their mean force).
@@ -59,6 +62,8 @@ class HardSphereEngine : public ParticleEngine {
 
   // Collisions since the start of this run (for the report and the bench)
   const FlightCounts &totals() const { return totals_; }
+  // The data file's overlaps, taken as touching where they are (EventFlight::tolerate_overlaps)
+  const EventFlight::Overlaps &overlaps() const { return overlaps_; }
 
  private:
   static const double *flat(const std::vector<Vec3> &v) { return &v.data()->x; }
@@ -77,6 +82,7 @@ class HardSphereEngine : public ParticleEngine {
   int type_count_ = 0;
   long long step_ = 0;
   FlightCounts totals_;
+  EventFlight::Overlaps overlaps_;
 };
 
 }  // namespace tfdem::hard_sphere

@@ -17,6 +17,13 @@
 // Walls are the planes of a box (infinite mass); a side without one is open; an axis may
 // instead be periodic (a granular gas without walls).
 //
+// A packing made with soft spheres holds pairs that overlap by a few % of d and spheres sunk
+// into walls. Hard spheres cannot push them apart, and a network of overlapping pairs
+// collides at one instant without end. tolerate_overlaps() takes such a pair as touching at
+// its present distance (or sphere at its present gap to the wall): that contact distance grows
+// back to R_a + R_b as the pair parts (updated whenever the lists are built), and is forgotten
+// once it has.
+//
 // Inelastic collapse (seed 001 sec. 2.1: collision rates diverge as relative velocities vanish
 // in dense, dissipative beds) is kept off by the TC model of Luding and McNamara (1998): a
 // collision within `elastic_within` seconds of either particle's previous one is elastic and
@@ -26,6 +33,8 @@
 #define TFDEM_HARD_SPHERE_EVENT_FLIGHT_H
 
 #include <cstddef>
+#include <cstdint>
+#include <unordered_map>
 #include <vector>
 
 #include "tfdem/hard_sphere/collision.h"
@@ -75,6 +84,19 @@ class EventFlight {
   void add(const Vec3 &x, const Vec3 &v, const Vec3 &w, double r, double m, int type);
   void remove(std::vector<std::size_t> indices);
   const WallBox &box() const { return box_; }
+  // Take the pairs overlapping now, and the spheres sunk into a wall, as touching where they
+  // are (see above): how many, and the deepest overlap as a fraction of the smaller diameter
+  struct Overlaps {
+    std::size_t pairs = 0, walls = 0;
+    double deepest = 0;
+  };
+  Overlaps tolerate_overlaps();
+  // The tolerated contacts, to save and restore with the particles (a restart)
+  const std::unordered_map<std::uint64_t, double> &tolerated() const { return tolerated_; }
+  const std::vector<double> &wall_reach() const { return reach_; }
+  void restore_tolerated(std::unordered_map<std::uint64_t, double> pairs, std::vector<double> reach);
+  // Build the lists afresh at the next flow step (as a run resumed from here does)
+  void invalidate_lists() { lists_built_ = false; }
   // Open a face of the box (no wall there: an outlet)
   void open(int axis, int side) { box_.wall[axis][side] = false; }
 
@@ -108,7 +130,12 @@ class EventFlight {
   // partners of each particle (first_[i] .. first_[i + 1] in partners_), their skin (m), and
   // each particle's path since they were built (m)
   std::vector<int> first_, partners_;
+  std::vector<double> contact_;  // each listed pair's contact distance (R_a + R_b, or less)
   double skin_ = 0;
+  // tolerated overlaps: pair (i << 32 | j, i < j) -> its contact distance; each sphere's reach
+  // towards each of the 6 walls (its radius, or less)
+  std::unordered_map<std::uint64_t, double> tolerated_;
+  std::vector<double> reach_;
   std::vector<double> path_;
   bool lists_built_ = false;
   bool periodic_ = false;
