@@ -1,14 +1,20 @@
-"""The study's report: seed 000's figures from the runs' outputs, a CSV per time series, and
-the table of every number beside the paper's (report/README.md, report/numbers.json).
+"""The study's report: seed 000's figures from the runs' outputs, and the table of every
+number beside the paper's (report/README.md, report/numbers.json, copied to
+results/numbers.json and results/README.md, which are kept in the repository).
 
-Every time average comes with its standard error from batch means (study.yaml `batch`);
-averages cover seed 000's window (5-10 s) and 5-20 s. The maps are time averages of the
-fields the runs sampled at every cell centre (study.yaml `field_interval`).
+Every number comes from a run's record (record.py: its series and window-averaged maps,
+results/<run>/), written from the run folder when the run finished and read back; a run
+without a folder but with a record (a clone without runs/) still gives its numbers, only the
+figures need the run folders. Every time average comes with its standard error from batch
+means (study.yaml `batch`); averages cover seed 000's window (5-10 s) and 5-20 s. The maps
+are time averages of the fields the runs sampled at every cell centre (study.yaml
+`field_interval`). The realizations of study.yaml add ensemble errors, blocking curves,
+autocorrelation times and noise floors (replicates.py).
 """
-import csv
 import json
 import math
 import os
+import shutil
 
 import matplotlib
 
@@ -16,13 +22,16 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy  # noqa: E402
 
-from tfdem.bed import BedOutputs, l1_difference, to_grid  # noqa: E402
+from record import Record  # noqa: E402
+from replicates import Replicates  # noqa: E402
+from tfdem.bed import BedOutputs, l1_difference, mirror_mean, to_grid  # noqa: E402
 from tfdem.outputs import vtk_particles  # noqa: E402
 from tfdem.stats import batch_means, dominant_frequency, window  # noqa: E402
 
 # Seed 000's results (text of the paper; its figures give no more digits)
 PAPER = {
     "bulk_coordination_jet": "~1.2 (Fig. 5)",
+    "bulk_coordination_jet_value": 1.2,  # "varies around 1.2" (text beside Fig. 5)
     "bulk_coordination_uniform": "~0.5 (Fig. 5)",
     "multicontact_jet": "> 0.6 most of the time (Fig. 11)",
     "multicontact_uniform": "~0.3 (Fig. 11)",
@@ -38,18 +47,14 @@ PAPER = {
 
 
 class RunData(BedOutputs):
-    """What a finished run wrote, as arrays, with its cost."""
+    """What a finished run wrote, as arrays, with its cost: the figures' input (a Record, the
+    numbers')."""
 
     def __init__(self, run):
         super().__init__(run.case, run.tfm)
         self.run, self.name = run, run.name
         self.wall = run.wall_seconds()
         self.cpu = run.cpu_seconds()
-
-
-def _mirror_mean(field):
-    """A (rows, columns) map averaged with its mirror image about the vertical mid-plane."""
-    return 0.5 * (field + field[:, ::-1])
 
 
 def averaged(t, y, start, end, batch):
@@ -66,22 +71,37 @@ def fmt(stat, scale=1.0, digits=3):
 
 
 class Report:
-    def __init__(self, study, runs, end_time, out):
-        self.study, self.end_time, self.out = study, end_time, out
+    def __init__(self, study, runs, end_time, out, results):
+        self.study, self.end_time, self.out, self.results = study, end_time, out, results
         self.windows = [(a * end_time, b * end_time) for a, b in study["windows"]]
         self.batch = study["batch"] * end_time / study["end_time"]
         self.snapshot = study["snapshot_time"] * end_time
-        self.data = {}
+        self.data, self.records = {}, {}
         self.missing = []
         for r in runs:
+            folder = os.path.join(results, r.name)
             if r.done():
                 self.data[r.name] = RunData(r)
+                Record.from_outputs(self.data[r.name], self.map_windows()).write(folder)
+            if r.done() or os.path.isfile(os.path.join(folder, "run.json")):
+                self.records[r.name] = Record.read(folder, r.name)
             else:
                 self.missing.append(r.name)
-        self.numbers = {"windows": self.windows, "batch": self.batch, "snapshot": self.snapshot, "runs": {}}
-        os.makedirs(os.path.join(out, "csv"), exist_ok=True)
+        self.numbers = {"windows": self.windows, "batch": self.batch, "snapshot": self.snapshot, "runs": {},
+                        "from_records_only": sorted(set(self.records) - set(self.data))}
+        os.makedirs(out, exist_ok=True)
+
+    def map_windows(self):
+        """The windows whose averaged maps the numbers use: the study's, and the two halves of
+        the last (the one-run noise floor of window_l1)."""
+        start, end = self.windows[-1]
+        return list(self.windows) + [(start, 0.5 * (start + end)), (0.5 * (start + end), end)]
 
     def has(self, *names):
+        return all(n in self.records for n in names)
+
+    def has_data(self, *names):
+        """The run folders are here (the figures need them)."""
         return all(n in self.data for n in names)
 
     # Numbers -----------------------------------------------------------------------------
@@ -106,13 +126,11 @@ class Report:
         """Contact/drag ratio of the time-averaged maps over the bed's cells (time-averaged
         solids fraction above 0.1): share of cells between 2 and 10, median, largest, and the
         largest in the bottom corners (x < 4 cm or x > W - 4 cm, y < 6 cm)."""
-        contact, drag = d.field_average(d.contact, start, end), d.field_average(d.drag, start, end)
-        solids = d.field_average(d.solids, start, end)
+        contact, drag = d.window_map("contact", start, end), d.window_map("drag", start, end)
+        solids = d.window_map("solids", start, end)
         bed = (solids > 0.1) & (drag > 0)
         ratio = numpy.where(drag > 0, contact / numpy.where(drag > 0, drag, 1), numpy.nan)
-        x = numpy.array([c[0] for c in d.grid.centres()]).reshape(d.shape)
-        width = d.grid.upper(0) - d.grid.origin[0]
-        corner = bed & (d.y < 0.06) & ((x < 0.04) | (x > width - 0.04))
+        corner = bed & (d.y < 0.06) & ((d.x < 0.04) | (d.x > d.width - 0.04))
         values = ratio[bed]
         return {"share_2_to_10": float(((values >= 2) & (values <= 10)).mean()) if values.size else float("nan"),
                 "median": float(numpy.median(values)) if values.size else float("nan"),
@@ -123,45 +141,25 @@ class Report:
         """Mean |difference| of the time-averaged solids fraction of two grids over the
         bottom 45 cm, the fine map averaged onto the coarse cells; `symmetric`: of the maps
         averaged with their mirror images (which side a jet leans to left out)."""
-        a = self.data[coarse].field_average(self.data[coarse].solids, start, end)
-        b = to_grid(self.data[fine].field_average(self.data[fine].solids, start, end), a.shape)
+        a = self.records[coarse].window_map("solids", start, end)
+        b = to_grid(self.records[fine].window_map("solids", start, end), a.shape)
         if symmetric:
-            a, b = _mirror_mean(a), _mirror_mean(b)
-        return l1_difference(a, b, rows=self._rows_below(self.data[coarse], 0.45))
+            a, b = mirror_mean(a), mirror_mean(b)
+        return l1_difference(a, b, rows=self._rows_below(self.records[coarse], 0.45))
 
     def window_l1(self, run, first, second, symmetric=False):
         """Mean |difference| of one run's time-averaged solids fraction over two windows,
         bottom 45 cm: the statistical noise of such an average, the floor under grid_l1."""
-        d = self.data[run]
-        a, b = d.field_average(d.solids, *first), d.field_average(d.solids, *second)
+        d = self.records[run]
+        a, b = d.window_map("solids", *first), d.window_map("solids", *second)
         if symmetric:
-            a, b = _mirror_mean(a), _mirror_mean(b)
+            a, b = mirror_mean(a), mirror_mean(b)
         return l1_difference(a, b, rows=self._rows_below(d, 0.45))
 
     @staticmethod
     def _rows_below(d, height):
         """Number of cell rows whose centres lie below `height` (m)."""
         return int((d.y[:, 0] < height).sum())
-
-    # CSV -----------------------------------------------------------------------------------
-    def write_csv(self, d):
-        path = os.path.join(self.out, "csv", f"{d.name}_pressure.csv")
-        with open(path, "w", newline="") as f:
-            w = csv.writer(f)
-            w.writerow(["t (s)", "dp 20 cm (Pa): p(bottom row) - p(row 20 cm above), row means"])
-            w.writerows(zip(d.p_t, d.dp))
-        t, h = d.mean_height()
-        path = os.path.join(self.out, "csv", f"{d.name}_particles.csv")
-        with open(path, "w", newline="") as f:
-            w = csv.writer(f)
-            if d.tfm:
-                w.writerow(["t (s)", "solids mean height (m)"])
-                w.writerows(zip(t, h))
-            else:
-                p = d.particles
-                w.writerow(["t (s)", "mean particle height (m)", "bulk coordination number", "multicontact ratio",
-                            "particles"])
-                w.writerows(zip(p["t"], p["mean_height"], p["bulk_coordination"], p["multicontact"], p["particles"]))
 
     # Figures -------------------------------------------------------------------------------
     def save(self, fig, name):
@@ -205,7 +203,7 @@ class Report:
 
     def fig4(self):
         pairs = [(c, f) for c, f in (("jet_m1", "jet_fine_m1"), ("jet_cube_m1", "jet_fine_cube_m1"),
-                                     ("jet_cube2_m1", "jet_fine_cube2_m1")) if self.has(c, f)]
+                                     ("jet_cube2_m1", "jet_fine_cube2_m1")) if self.has_data(c, f)]
         if not pairs:
             return
         start, end = self.windows[0]
@@ -282,7 +280,7 @@ class Report:
         self.save(fig, filename)
 
     def fig8(self):
-        if not self.has("jet_m1", "jet_tfm"):
+        if not self.has_data("jet_m1", "jet_tfm"):
             return
         start, end = self.windows[0]
         fig, axes = plt.subplots(1, 4, figsize=(10, 5))
@@ -331,9 +329,8 @@ class Report:
     # Assembly ------------------------------------------------------------------------------
     def build(self):
         self.figures = []
-        for name, d in self.data.items():
+        for name, d in self.records.items():
             self.numbers["runs"][name] = self.run_numbers(d)
-            self.write_csv(d)
         start, end = self.windows[1]
         halves = ((start, 0.5 * (start + end)), (0.5 * (start + end), end))
         for c, f in (("jet_m1", "jet_fine_m1"), ("jet_m2", "jet_fine_m2"), ("jet_cube_m1", "jet_fine_cube_m1"),
@@ -361,13 +358,18 @@ class Report:
         self.force_figure("uniform_m1", "fig12_uniform_forces.png",
                           "Fig. 12: contact and drag force per cell, uniform-inflow bed")
         self.fig13()
+        replicates = Replicates(self, PAPER)
+        self.numbers["replicates"] = replicates.numbers()
+        replicates.figure(self)
         self.numbers["figures"] = self.figures
         self.numbers["missing_runs"] = self.missing
         with open(os.path.join(self.out, "numbers.json"), "w") as f:
             json.dump(self.numbers, f, indent=1, default=float)
-        self.write_readme()
+        self.write_readme(replicates.markdown())
+        for name in ("numbers.json", "README.md"):
+            shutil.copy(os.path.join(self.out, name), os.path.join(self.results, name))
 
-    def write_readme(self):
+    def write_readme(self, replicate_lines):
         w0 = f"{self.windows[0][0]:g}-{self.windows[0][1]:g}"
         w1 = f"{self.windows[1][0]:g}-{self.windows[1][1]:g}"
         runs = self.numbers["runs"]
@@ -379,9 +381,13 @@ class Report:
 
         lines = [f"# Seed 000 study: report ({self.end_time:g} s runs)", "",
                  f"Averages over {w0} s (seed 000's window) and {w1} s, ± the standard error of batch means "
-                 f"({self.batch:g} s batches). Made by `study.py report` from `runs/`.", ""]
+                 f"({self.batch:g} s batches). Made by `study.py report` from the runs' records "
+                 "(`results/<run>/`, written from `runs/`).", ""]
         if self.missing:
             lines += [f"Runs not finished (left out): {', '.join(self.missing)}", ""]
+        if self.numbers["from_records_only"]:
+            lines += ["From their records only (no run folder, so in no figure): "
+                      f"{', '.join(self.numbers['from_records_only'])}", ""]
         lines += ["| quantity | run | paper | ours " + w0 + " s | ours " + w1 + " s |", "|---|---|---|---|---|"]
         rows = [("Δp at 20 cm (Pa), jet", r, "figure only (Fig. 3)", "dp20", 1.0) for r in ("jet_m1", "jet_m2", "jet_fine_m1", "jet_tfm")]
         rows += [("bulk coordination number, jet", r, PAPER["bulk_coordination_jet"], "bulk_coordination", 1.0)
@@ -426,16 +432,17 @@ class Report:
             lines.append(f"| {name} | {values['wall_seconds']:.0f} s | {values['cpu_seconds']:.0f} s | "
                          f"{values['cpu_seconds'] / self.end_time:.1f} s |")
         lines += ["", f"Paper (one 2.0 GHz Opteron 270 core, 20 s of the jet bed): TF-DEM "
-                       f"{PAPER['cost_tfdem_jet']:.0f} s, TFM {PAPER['cost_tfm_jet']:.0f} s.", "", "## Figures", ""]
+                       f"{PAPER['cost_tfdem_jet']:.0f} s, TFM {PAPER['cost_tfm_jet']:.0f} s.", ""]
+        lines += replicate_lines + ["", "## Figures", ""]
         lines += [f"![{f}]({f})" for f in self.figures]
         with open(os.path.join(self.out, "README.md"), "w") as f:
             f.write("\n".join(lines) + "\n")
 
 
-def write_report(study, runs, end_time, out):
-    report = Report(study, runs, end_time, out)
-    if not report.data:
-        raise SystemExit("report: no finished run in runs/ (study.py run first)")
+def write_report(study, runs, end_time, out, results):
+    report = Report(study, runs, end_time, out, results)
+    if not report.records:
+        raise SystemExit(f"report: no finished run in runs/ and no record in {results} (study.py run first)")
     report.build()
     bad = [f"{run}.{w}.{k}" for run, values in report.numbers["runs"].items() for w, v in values.items()
            if isinstance(v, dict) for k, s in v.items()

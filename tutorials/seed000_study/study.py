@@ -202,7 +202,8 @@ def main(argv=None):
     parser.add_argument("--runs", default="", help="comma-separated run names (default: all)")
     parser.add_argument("--end-time", type=float, default=None, help="simulated seconds per run (default: study.yaml's)")
     parser.add_argument("--jobs", type=int, default=2, help="runs side by side (default 2: one per core)")
-    parser.add_argument("--root", default=STUDY_DIR, help="folder for runs/ and report/ (default: the study's)")
+    parser.add_argument("--root", default=STUDY_DIR,
+                        help="folder for runs/, report/ and results/ (the runs' records; default: the study's)")
     parser.add_argument("--study", default=os.path.join(STUDY_DIR, "study.yaml"), help="study definition")
     args = parser.parse_args(argv)
     try:
@@ -227,7 +228,8 @@ def main(argv=None):
                 return 1
             return 0
         import report
-        report.write_report(study, runs, end_time, os.path.join(args.root, "report"))
+        report.write_report(study, runs, end_time, os.path.join(args.root, "report"),
+                            os.path.join(args.root, "results"))
         return 0
     except (StudyError, BatchError, CaseError, RunError) as e:
         print(f"study.py: {e}", file=sys.stderr)

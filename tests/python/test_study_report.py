@@ -1,0 +1,277 @@
+"""The seed 000 study's statistics and report functions on hand-made inputs with answers
+worked out by hand or from a closed form (no simulation):
+
+- tfdem.stats: the ensemble mean and its standard error, differences, the blocking curve
+  (alternating and step series by hand; white noise and AR(1) plateaus from the closed form
+  sigma^2 tau / N), the autocorrelation and Sokal's window (by hand), the integrated
+  autocorrelation time of white noise (1) and AR(1) ((1 + phi) / (1 - phi)), chi-square
+  quantiles against the tables;
+- tfdem.bed: Delta p at 20 cm from the row probes (also through BedOutputs on a hand-made
+  case), the mirror mean, pairwise and cross L1, the noise floor, the permutation test;
+- the study's record (written and read back, a missing file named) and report.py's
+  ratio_numbers, grid_l1 and window_l1 on hand-made records.
+"""
+import math
+import os
+import sys
+import tempfile
+
+import numpy
+
+from tfdem.bed import (BedOutputs, cross_l1, l1_noise_floor, l1_permutation_test, mirror_mean, pairwise_l1,
+                       row_pressure_drop, write_bed_probes)
+from tfdem.case import Case
+from tfdem.stats import (autocorrelation, blocking_curve, chi_square_quantile, difference, ensemble,
+                         integrated_autocorrelation_time, sokal_window, spread_ratio_range)
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tutorials", "seed000_study"))
+import report  # noqa: E402
+from record import Record, RecordError  # noqa: E402
+
+failures = []
+
+
+def check(name, condition, detail=""):
+    print(("PASS " if condition else "FAIL ") + name + (f" {detail}" if detail else ""))
+    if not condition:
+        failures.append(name)
+
+
+def close(a, b, tol=1e-12):
+    return abs(a - b) <= tol * max(1.0, abs(b))
+
+
+def raises(function, *args, **kwargs):
+    try:
+        function(*args, **kwargs)
+    except ValueError as e:
+        return str(e)
+    return None
+
+
+def ar1(phi, n, seed):
+    """x_i = phi x_{i-1} + e_i with unit normal e, started in its stationary distribution."""
+    rng = numpy.random.default_rng(seed)
+    e = rng.standard_normal(n)
+    x = numpy.empty(n)
+    x[0] = e[0] / math.sqrt(1 - phi ** 2)
+    for i in range(1, n):
+        x[i] = phi * x[i - 1] + e[i]
+    return x
+
+
+def check_ensemble():
+    # 1, 2, 3, 4: mean 2.5, sample variance (2.25 + 0.25 + 0.25 + 2.25) / 3 = 5/3
+    e = ensemble([1, 2, 3, 4])
+    check("ensemble mean", close(e["mean"], 2.5), str(e))
+    check("ensemble spread: std with ddof = 1", close(e["spread"], math.sqrt(5 / 3)))
+    check("ensemble error: spread / sqrt(n)", close(e["error"], math.sqrt(5 / 3) / 2) and e["n"] == 4)
+    check("ensemble of one value refused", raises(ensemble, [5.0]) is not None)
+    d = difference({"mean": 3.0, "error": 0.3}, {"mean": 1.0, "error": 0.4})
+    check("difference: errors in quadrature", close(d["mean"], 2.0) and close(d["error"], 0.5), str(d))
+
+
+def check_blocking():
+    # +1, -1, ... (16): one-sample batches have mean 0 and s^2 = 16/15, error s / 4; any even
+    # batch length averages to exactly 0
+    curve = blocking_curve([1.0, -1.0] * 8, [1, 2, 4])
+    check("blocking: alternating series, single samples",
+          close(curve[0]["error"], math.sqrt(16 / 15) / 4) and curve[0]["batches"] == 16, str(curve[0]))
+    check("blocking: error of the error 1 / sqrt(2 (n - 1))",
+          close(curve[0]["error_of_error"], curve[0]["error"] / math.sqrt(30)))
+    check("blocking: alternating series, even batches give 0", curve[1]["error"] == 0 and curve[2]["error"] == 0)
+    # 0 x 8 then 1 x 8, batches of 8: means 0 and 1, s = 1/sqrt(2), error s / sqrt(2) = 0.5
+    step = blocking_curve([0.0] * 8 + [1.0] * 8, [8])
+    check("blocking: step series, two batches", close(step[0]["error"], 0.5) and step[0]["batches"] == 2, str(step))
+    # the remainder is left out: 17 samples in batches of 8 are two batches of the first 16
+    check("blocking: remainder left out", close(blocking_curve([0.0] * 8 + [1.0] * 8 + [100.0], [8])[0]["error"], 0.5))
+    check("blocking: a batch length leaving one batch refused", raises(blocking_curve, [1.0, 2.0, 3.0], [2]) is not None)
+    n = 2 ** 16
+    noise = numpy.random.default_rng(7).standard_normal(n)
+    flat = blocking_curve(noise, [1, 16, 256])
+    expected = 1 / math.sqrt(n)
+    check("blocking: white noise is flat at sigma / sqrt(N)",
+          all(abs(c["error"] - expected) < 3 * c["error_of_error"] for c in flat), str([c["error"] for c in flat]))
+    # AR(1), phi = 0.8: var = 1 / (1 - phi^2), tau = 9; the plateau sqrt(var tau / N), single
+    # samples sqrt(var / N), 3 times lower
+    x = ar1(0.8, n, 11)
+    plateau = math.sqrt(9 / (1 - 0.64) / n)
+    c = {k["size"]: k for k in blocking_curve(x, [1, 256, 1024])}
+    check("blocking: AR(1) plateau sqrt(var tau / N)",
+          abs(c[256]["error"] - plateau) < 3 * c[256]["error_of_error"]
+          and abs(c[1024]["error"] - plateau) < 3 * c[1024]["error_of_error"], f"{c[256]['error']} {plateau}")
+    check("blocking: AR(1) single samples underestimate by sqrt(tau) = 3",
+          abs(c[1]["error"] - plateau / 3) < 0.02 * plateau / 3, f"{c[1]['error']} {plateau / 3}")
+
+
+def check_autocorrelation():
+    # 1, 1, -1, -1 (mean 0, C0 = 1): C1 = (1 - 1 + 1) / 4, C2 = (-1 - 1) / 4, C3 = -1 / 4
+    rho = autocorrelation([1, 1, -1, -1])
+    check("autocorrelation by hand", numpy.allclose(rho, [1, 0.25, -0.5, -0.25]), str(rho))
+    check("autocorrelation of a constant refused", raises(autocorrelation, [2.0, 2.0, 2.0]) is not None)
+    # rho = 1, 1/2, 1/4, 1/8, 0 ...: tau(1) = 2, tau(2) = 2.5, tau(3) = 2.75, tau(4) = 2.75
+    rho = [1, 0.5, 0.25, 0.125, 0, 0, 0, 0, 0, 0]
+    check("Sokal window, c = 1: M = 3 (3 >= 2.75; 2 < 2.5)", sokal_window(rho, 1) == (2.75, 3), str(sokal_window(rho, 1)))
+    check("Sokal window, c = 0.5: M = 1 (1 >= 1)", sokal_window(rho, 0.5) == (2.0, 1))
+    message = raises(sokal_window, rho, 5)
+    check("Sokal window, c = 5: no M < N / 2, refused", message is not None and "too short" in message, str(message))
+    tau, _ = integrated_autocorrelation_time(numpy.random.default_rng(3).standard_normal(2 ** 16))
+    check("tau_int of white noise = 1", abs(tau - 1) < 0.05, f"{tau:.3f}")
+    for phi, seed in ((0.5, 5), (0.8, 13)):
+        expected = (1 + phi) / (1 - phi)
+        tau, m = integrated_autocorrelation_time(ar1(phi, 2 ** 17, seed))
+        # the estimate's relative error is about sqrt(2 (2M + 1) / N) < 4 %
+        check(f"tau_int of AR(1), phi = {phi}: (1 + phi) / (1 - phi) = {expected:g}",
+              abs(tau - expected) < 0.1 * expected and m >= 5 * tau, f"{tau:.3f}, M = {m}")
+
+
+def check_chi_square():
+    # tables: chi2(0.05; 6) = 1.635, chi2(0.95; 6) = 12.592, chi2(0.05; 10) = 3.940,
+    # chi2(0.95; 10) = 18.307, chi2(0.05; 12) = 5.226, chi2(0.95; 12) = 21.026
+    table = ((0.05, 6, 1.635), (0.95, 6, 12.592), (0.05, 10, 3.940), (0.95, 10, 18.307), (0.05, 12, 5.226),
+             (0.95, 12, 21.026))
+    worst = max(abs(chi_square_quantile(p, dof) / value - 1) for p, dof, value in table)
+    check("chi-square quantiles within 1 % of the tables", worst < 0.01, f"(worst {100 * worst:.2f} %)")
+    low, high = spread_ratio_range(10)
+    check("spread ratio range sqrt(chi2 / dof)", abs(high - math.sqrt(18.307 / 10)) < 0.005
+          and abs(low - math.sqrt(3.940 / 10)) < 0.005, f"{low} {high}")
+
+
+def check_maps():
+    check("Delta p: bottom row mean minus upper row mean",
+          numpy.allclose(row_pressure_drop([[100, 110, 120, 10, 20, 60], [5, 5, 5, 1, 2, 3]], 3), [80, 3]))
+    check("Delta p: a sample of the wrong width refused", raises(row_pressure_drop, [[1, 2, 3, 4]], 3) is not None)
+    check("mirror mean", numpy.allclose(mirror_mean(numpy.array([[1.0, 2, 3], [4, 0, 6]])), [[2, 2, 2], [5, 0, 5]]))
+    maps = [numpy.full((2, 2), v) for v in (0.0, 0.1, 0.3)]
+    maps[2][1] = 9.0  # the second row differs wildly: left out with rows = 1
+    check("pairwise L1 in order (0,1), (0,2), (1,2)", numpy.allclose(pairwise_l1(maps, rows=1), [0.1, 0.3, 0.2]))
+    floor = l1_noise_floor(maps, rows=1)
+    check("noise floor: mean, min, max of the pairs",
+          close(floor["mean"], 0.2, 1e-9) and close(floor["min"], 0.1, 1e-9) and close(floor["max"], 0.3, 1e-9)
+          and floor["pairs"] == 3, str(floor))
+    check("noise floor of one map refused", raises(l1_noise_floor, maps[:1]) is not None)
+    check("cross L1: every pair across", numpy.allclose(cross_l1(maps[:1], maps[1:], rows=1), [0.1, 0.3]))
+    zeros, ones = [numpy.zeros((2, 2))] * 4, [numpy.ones((2, 2))] * 4
+    test = l1_permutation_test(zeros, ones)
+    # only the true split and its swap reach the largest statistic 1 - 0: p = 2 / C(8, 4)
+    check("permutation test: separated maps, p = 2/70", close(test["statistic"], 1.0) and close(test["p"], 2 / 70)
+          and test["relabellings"] == 70, str(test))
+    test = l1_permutation_test(zeros, zeros)
+    check("permutation test: identical maps, p = 1", close(test["statistic"], 0.0) and test["p"] == 1.0, str(test))
+
+
+def write(path, text):
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    with open(path, "w") as f:
+        f.write(text)
+
+
+def check_bed_outputs(root):
+    """A 3 x 3 grid of 1 x 10 cm cells: the 20 cm row is the third; Delta p read through
+    BedOutputs from hand-written probe files."""
+    case_dir = os.path.join(root, "bed_case")
+    write(os.path.join(case_dir, "system", "blockMeshDict"),
+          "convertToMeters 1;\nvertices\n(\n    (0 0 0) (0.03 0 0) (0.03 0.3 0) (0 0.3 0)\n"
+          "    (0 0 0.01) (0.03 0 0.01) (0.03 0.3 0.01) (0 0.3 0.01)\n);\n"
+          "blocks\n(\n    hex (0 1 2 3 4 5 6 7) (3 3 1) simpleGrading (1 1 1)\n);\n")
+    write(os.path.join(case_dir, "system", "controlDict"), "deltaT 0.001;\nendTime 1;\n")
+    case = Case(case_dir)
+    write_bed_probes(case, 0.05, 0.01)
+    text = open(case.file("system", "controlDict")).read()
+    check("probes: the upper row 20 cm above the bottom row's centres", "(0.005 0.25 0.005)" in text
+          and "(0.025 0.05 0.005)" in text and "writeInterval 10;" in text)
+    post = os.path.join(case_dir, "postProcessing")
+    write(os.path.join(post, "studyPressure", "0", "p"), "# Time p\n0.01 100 110 120 10 20 60\n0.02 7 8 9 1 2 3\n")
+    for field in ("voidFraction", "contactForceByWeight", "dragForceByWeight"):
+        write(os.path.join(post, "studyFields", "0", field), "# Time\n0.05" + " 0.5" * 9 + "\n")
+    write(os.path.join(post, "tfdemParticles", "0", "particles.dat"), "# t\n0.01 10 0.1 0.05 1.0 0.5\n")
+    d = BedOutputs(case)
+    check("BedOutputs: Delta p at 20 cm from the two rows", numpy.allclose(d.dp, [80, 6]) and numpy.allclose(d.p_t, [0.01, 0.02]),
+          str(d.dp))
+
+
+def hand_record(name, counts, spacing, maps, tfm=False):
+    """A record with a flat series and the given {window: {field: map}}."""
+    meta = {"name": name, "tfm": tfm, "wall_seconds": 10.0, "cpu_seconds": 9.0,
+            "grid": {"counts": list(counts), "origin": [0.0, 0.0], "spacing": list(spacing)}, "windows": []}
+    t = numpy.array([0.0, 0.5, 1.0])
+    heights = {"t": t, "mean_height": numpy.array([0.1, 0.1, 0.1])}
+    if not tfm:
+        heights.update(bulk_coordination=numpy.ones(3), multicontact=numpy.ones(3), particles=numpy.full(3, 10.0))
+    return Record(name, meta, (t, numpy.array([1.0, 2.0, 3.0])), heights,
+                  {k: {f: numpy.asarray(v, dtype=float) for f, v in fields.items()} for k, fields in maps.items()})
+
+
+def check_ratio_numbers():
+    # 5 x 4 cells of 2 cm: x 1, 3, 5, 7, 9 cm, y 1, 3, 5, 7 cm; corners x < 4 or x > 6 cm and
+    # y < 6 cm; the top row is not bed (solids 0.05), the cell (row 2, column 2) has no drag
+    ratio = numpy.array([[20, 3, 30, 1, 12], [4, 6, 8, 2, 9], [3, 3, 3, 3, 3], [100, 100, 100, 100, 100]], float)
+    drag = numpy.full((4, 5), 2.0)
+    drag[2, 2] = 0.0
+    solids = numpy.full((4, 5), 0.5)
+    solids[3] = 0.05
+    d = hand_record("ratio", (5, 4), (0.02, 0.02), {"0-1": {"solids": solids, "contact": 2 * ratio, "drag": drag}})
+    r = report.Report.ratio_numbers(None, d, 0, 1)
+    # bed values 20 3 30 1 12 4 6 8 2 9 3 3 3 3: 10 of 14 in [2, 10]; median (3 + 4) / 2
+    check("ratio_numbers: share of bed cells in 2-10", close(r["share_2_to_10"], 10 / 14), str(r))
+    check("ratio_numbers: median and largest over the bed", close(r["median"], 3.5) and close(r["largest"], 30))
+    check("ratio_numbers: largest in the bottom corners", close(r["largest_in_corners"], 20))
+
+
+def check_l1_functions():
+    # coarse 2 x 3 cells of 20 cm (rows at 10, 30, 50 cm: two below 45 cm); fine 2 x 6 of 10 cm
+    coarse = [[0.5, 0.5], [0.3, 0.3], [0.0, 0.0]]
+    fine = [[0.6, 0.4], [0.6, 0.4], [0.3, 0.1], [0.1, 0.3], [1.0, 1.0], [1.0, 1.0]]
+    r = report.Report.__new__(report.Report)
+    r.records = {"c": hand_record("c", (2, 3), (0.1, 0.2), {"0-1": {"solids": coarse},
+                                                             "1-2": {"solids": [[0.2, 0.4], [0.3, 0.3], [5, 5]]}}),
+                 "f": hand_record("f", (2, 6), (0.1, 0.1), {"0-1": {"solids": fine}})}
+    # fine onto coarse: [0.6, 0.4], [0.2, 0.2]; |diff| 0.1 0.1 0.1 0.1; mirror-averaged 0 0 0.1 0.1
+    check("grid_l1: the fine map on the coarse cells, bottom 45 cm", close(r.grid_l1("c", "f", 0, 1), 0.1))
+    check("grid_l1 symmetric: of the mirror means", close(r.grid_l1("c", "f", 0, 1, symmetric=True), 0.05))
+    # windows: [0.5 0.5], [0.3 0.3] against [0.2 0.4], [0.3 0.3]: |diff| 0.3 0.1 0 0; mirrored 0.2 0.2 0 0
+    check("window_l1: two windows of one run", close(r.window_l1("c", (0, 1), (1, 2)), 0.1))
+    check("window_l1 symmetric", close(r.window_l1("c", (0, 1), (1, 2), symmetric=True), 0.1))
+    try:
+        r.window_l1("c", (0, 1), (2, 3))
+        check("a window the record does not keep is named", False)
+    except RecordError as e:
+        check("a window the record does not keep is named", "c: no solids map over 2-3 s" in str(e), str(e))
+
+
+def check_record(root):
+    maps = {"0-1": {"solids": [[0.1, 0.2], [0.3, 0.4]], "contact": [[1, 2], [3, 4]], "drag": [[5, 6], [7, 8.5]]}}
+    record = hand_record("run_a", (2, 2), (0.1, 0.1), maps)
+    folder = os.path.join(root, "results", "run_a")
+    record.write(folder)
+    back = Record.read(folder, "run_a")
+    check("record read back: series", numpy.allclose(back.dp, [1, 2, 3]) and numpy.allclose(back.p_t, [0, 0.5, 1])
+          and numpy.allclose(back.particles["multicontact"], 1.0))
+    check("record read back: maps", all(numpy.allclose(back.window_map(f, 0, 1), maps["0-1"][f]) for f in maps["0-1"]))
+    check("record read back: grid centres", numpy.allclose(back.x, [[0.05, 0.15]] * 2)
+          and numpy.allclose(back.y[:, 0], [0.05, 0.15]) and close(back.width, 0.2))
+    os.remove(os.path.join(folder, "maps.csv"))
+    try:
+        Record.read(folder, "run_a")
+        check("a missing record file is named with its run", False)
+    except RecordError as e:
+        check("a missing record file is named with its run", "run_a" in str(e) and "maps.csv" in str(e), str(e))
+
+
+def main():
+    root = tempfile.mkdtemp()
+    check_ensemble()
+    check_blocking()
+    check_autocorrelation()
+    check_chi_square()
+    check_maps()
+    check_bed_outputs(root)
+    check_ratio_numbers()
+    check_l1_functions()
+    check_record(root)
+    print(f"{'FAILED: ' + ', '.join(failures) if failures else 'all passed'}")
+    sys.exit(1 if failures else 0)
+
+
+if __name__ == "__main__":
+    main()
