@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -108,7 +109,9 @@ HardSphereEngine::HardSphereEngine(const HardSphereOptions &options, const std::
       box.lower[a] = atoms.lower[a];
       box.upper[a] = atoms.upper[a];
     }
-    type_count_ = atoms.type_count;
+    // the laws cover the particles' types: a higher type of the header (LIGGGHTS' walls)
+    // holds no particle and needs none
+    type_count_ = atoms.id.empty() ? atoms.type_count : *std::max_element(atoms.type.begin(), atoms.type.end());
     std::string outside;
     int outside_count = 0;
     for (std::size_t i = 0; i < atoms.id.size(); ++i)

@@ -482,20 +482,33 @@ class DemScript:
         return value
 
     def value(self, text):
-        """A number of a command: a literal, ${variable} or $(arithmetic of numbers)."""
-        variables = self.variables()
-        text = re.sub(r"\$\{(\w+)\}", lambda m: variables.get(m.group(1), m.group(0)), text)
-        text = re.sub(r"v_(\w+)", lambda m: variables.get(m.group(1), m.group(0)), text)
+        """A number of a command: a literal, ${variable}, v_variable or $(arithmetic); an
+        equal-style variable's expression is evaluated as LIGGGHTS does (numbers, other
+        variables, + - * / ^, PI, sqrt, ln, exp)."""
         expression = re.fullmatch(r"\$\((.*)\)", text)
-        if expression:
-            text = expression.group(1)
-            if not re.fullmatch(r"[\d.eE+\-*/() ]+", text):
-                raise CaseError(f"{self.path}: cannot evaluate $({text})")
-            return float(eval(text, {"__builtins__": {}}))  # numbers and + - * / only
+        return self._evaluate(expression.group(1) if expression else text, set())
+
+    def _evaluate(self, text, seen):
+        variables = self.variables()
+
+        def variable(name):
+            if name not in variables or name in seen:
+                raise CaseError(f"{self.path}: '{text}' names {'no' if name not in variables else 'circular'} "
+                                f"variable '{name}'")
+            return repr(self._evaluate(variables[name], seen | {name}))
+
+        python = re.sub(r"\$\{(\w+)\}|v_(\w+)", lambda m: variable(m.group(1) or m.group(2)), text)
         try:
-            return float(text)
+            return float(python)
         except ValueError:
-            raise CaseError(f"{self.path}: '{text}' is not a number") from None
+            pass
+        if not re.fullmatch(r"(?:[\d.eE+\-*/()^ ,]|PI|sqrt|ln|exp)+", python):
+            raise CaseError(f"{self.path}: '{text}' is not a number")
+        try:
+            return float(eval(python.replace("^", "**"), {"__builtins__": {}},
+                              {"PI": math.pi, "sqrt": math.sqrt, "ln": math.log, "exp": math.exp}))
+        except (SyntaxError, TypeError, ValueError, ZeroDivisionError) as e:
+            raise CaseError(f"{self.path}: cannot evaluate '{text}': {e}") from None
 
     def time_step(self):
         return self.value(self.command("timestep")[1])

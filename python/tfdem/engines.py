@@ -2,9 +2,73 @@
 case's DEM script, or the hard-sphere event-driven engine, the particles of a data file. What
 turns a case from one to the other and writes the data file the hard-sphere engine reads.
 """
+import math
+
 import yaml
 
 from tfdem.case import Case
+
+CONTACT_PROPERTIES = ("kn", "kt", "gamman_abs", "gammat_abs", "coefficientFriction")
+
+
+class ScriptError(Exception):
+    """A DEM script whose contact model the hard-sphere engine cannot take, named."""
+
+
+def restitution_of_damping(stiffness, damping, mass):
+    """The restitution of a linear spring-dashpot contact, seed 001 eq. 27 solved for e_n
+    (normal: stiffness k_n, damping eta_n, mass m_ab) or eq. 30 for beta_0 (tangential: k_t,
+    eta_t and the mass 2/7 m_ab): e = exp(-pi eta / sqrt(4 m k - eta^2)); 0 at or past critical
+    damping (eta >= 2 sqrt(m k))."""
+    discriminant = 4 * mass * stiffness - damping ** 2
+    return math.exp(-math.pi * damping / math.sqrt(discriminant)) if discriminant > 0 else 0.0
+
+
+def contact_properties(script):
+    """A LIGGGHTS script's (a DemScript) `fix ... property/global <name> peratomtypepair n
+    <values>` for the linear spring-dashpot (CONTACT_PROPERTIES) as n x n matrices; refuses a
+    script without them (a Hertz or restitution-based contact) by name."""
+    tables = {}
+    for words in script.commands("fix"):
+        if len(words) > 6 and words[3] == "property/global" and words[5] == "peratomtypepair":
+            n = int(words[6])
+            numbers = [script.value(w) for w in words[7:]]
+            if len(numbers) != n * n:
+                raise ScriptError(f"{script.path}: property/global {words[4]} gives {len(numbers)} values for "
+                                  f"{n} x {n} types")
+            tables[words[4]] = [numbers[i * n:(i + 1) * n] for i in range(n)]
+    missing = [p for p in CONTACT_PROPERTIES if p not in tables]
+    if missing:
+        raise ScriptError(f"{script.path}: no property/global {', '.join(missing)} peratomtypepair: the hard-sphere "
+                          "laws are derived from a linear spring-dashpot with absolute damping (hooke/stiffness)")
+    return tables
+
+
+def hard_sphere_laws(script, masses):
+    """Seed 001's hard-sphere coefficients (e_n, beta_0, mu; eqs. 17, 19, 21) equivalent to a
+    LIGGGHTS script's (a DemScript) linear spring-dashpot contacts (eqs. 24-30): e_n from k_n, eta_n and m_ab
+    (eq. 27), beta_0 from k_t, eta_t and 2/7 m_ab (eq. 30, a sticking contact), mu as given.
+    `masses`: one particle mass per particle type (types 1..n; the script's last type, n + 1,
+    is the walls', whose mass is infinite: m_ab = m_a). Returns the keyword arguments of
+    use_hard_sphere: matrices over the particle types and the walls' lists."""
+    tables = contact_properties(script)
+    n = len(masses)
+    if len(tables["kn"]) != n + 1:
+        raise ScriptError(f"{script.path}: {len(tables['kn'])} atom types in its contact tables, expected {n} particle "
+                          f"types and the walls' ({n + 1})")
+
+    def laws(pairs):
+        e, beta, mu = [], [], []
+        for a, b, m_ab in pairs:
+            e.append(restitution_of_damping(tables["kn"][a][b], tables["gamman_abs"][a][b], m_ab))
+            beta.append(restitution_of_damping(tables["kt"][a][b], tables["gammat_abs"][a][b], 2 / 7 * m_ab))
+            mu.append(tables["coefficientFriction"][a][b])
+        one = lambda v: v[0] if len(set(v)) == 1 else v  # the same for every pair: one value
+        return {"restitution": one(e), "tangential_restitution": one(beta), "friction": one(mu)}
+
+    pair = laws([(a, b, masses[a] * masses[b] / (masses[a] + masses[b])) for a in range(n) for b in range(n)])
+    pair["wall"] = laws([(a, n, masses[a]) for a in range(n)])
+    return pair
 
 
 def write_data_file(path, lower, upper, diameters, densities, positions, velocities=None, types=None,

@@ -12,7 +12,8 @@ import numpy
 
 from tfdem.batch import variants_command_line
 from tfdem.bubble import coloured_above, find_bubble
-from tfdem.case import Case, CaseError, set_yaml_value
+from tfdem.case import Case, CaseError, DemScript, set_yaml_value
+from tfdem.engines import ScriptError, hard_sphere_laws, restitution_of_damping
 from tfdem.outputs import OutputError, dump_frames, fix_print, joined_series
 from tfdem.packing import packing_settings, set_atom_types, to_mid_plane
 from tfdem.physics import slab_solid_fraction
@@ -32,6 +33,54 @@ def write(path, text):
     os.makedirs(os.path.dirname(path), exist_ok=True)
     with open(path, "w") as f:
         f.write(text)
+
+
+def check_hard_sphere_laws(root):
+    """A LIGGGHTS script's linear spring-dashpot as hard-sphere coefficients: damping written
+    with seed 001's eq. 27 (normal) and eq. 30 (tangential, 2/7 m_ab) for e_n = 0.9, beta_0 =
+    0.5 through variables (PI, sqrt, ln, ^, v_, ${}) comes back as 0.9 and 0.5; seed 000's
+    uniform bed (SPEC: eta_n 0.00177 N s/m, k_n 800 N/m, 2.5 mm glass) gives e_n ~ 0.97."""
+    m = 2526 * math.pi * 0.0025 ** 3 / 6
+    path = os.path.join(root, "in.laws")
+    write(path, f"""variable m equal 2526*PI*0.0025^3/6
+variable kn equal 800
+variable kt equal 2.0/7.0*v_kn
+variable en equal 0.9
+variable bt equal 0.5
+variable etan equal -2*ln(v_en)*sqrt(v_m/2*v_kn)/sqrt(PI^2+ln(v_en)^2)
+variable etat equal -2*ln(v_bt)*sqrt(2/7*v_m/2*v_kt)/sqrt(PI^2+ln(v_bt)^2)
+fix m1 all property/global kn peratomtypepair 2 ${{kn}} 1200 1200 1200
+fix m2 all property/global kt peratomtypepair 2 ${{kt}} ${{kt}} ${{kt}} ${{kt}}
+fix m3 all property/global gamman_abs peratomtypepair 2 ${{etan}} 0.00393 0.00393 0.00393
+fix m4 all property/global gammat_abs peratomtypepair 2 ${{etat}} 0 0 0
+fix m5 all property/global coefficientFriction peratomtypepair 2 0.1 0.3 0.3 0.3
+""")
+    laws = hard_sphere_laws(DemScript(path), [m])
+    check("hard-sphere laws: e_n and beta_0 of eq. 27 and 30 recovered",
+          abs(laws["restitution"] - 0.9) < 1e-12 and abs(laws["tangential_restitution"] - 0.5) < 1e-12, str(laws))
+    wall = laws["wall"]
+    # the wall (infinite mass, m_ab = m): e = exp(-pi eta / sqrt(4 m k - eta^2)) by hand
+    by_hand = math.exp(-math.pi * 0.00393 / math.sqrt(4 * m * 1200 - 0.00393 ** 2))
+    check("hard-sphere laws: the walls' own, undamped tangential elastic",
+          abs(wall["restitution"] - by_hand) < 1e-12 and wall["tangential_restitution"] == 1.0
+          and wall["friction"] == 0.3, str(wall))
+    seed000 = restitution_of_damping(800, 0.00177, m / 2)
+    check("seed 000's uniform bed: e_n ~ 0.97 (SPEC)", abs(seed000 - 0.97) < 0.005, f"{seed000:.4f}")
+    check("critical damping: e = 0", restitution_of_damping(800, 2 * math.sqrt(m * 800), m) == 0.0)
+    write(path, "fix m1 all property/global kn peratomtypepair 1 800\n")
+    try:
+        hard_sphere_laws(DemScript(path), [m])
+        message = ""
+    except ScriptError as e:
+        message = str(e)
+    check("a script without the spring-dashpot tables is refused by name", "gamman_abs" in message, message)
+    write(path, "variable a equal v_b+1\nvariable b equal v_a\nfix g all gravity ${a} vector 0 -1 0\n")
+    try:
+        DemScript(path).value("${a}")
+        message = ""
+    except CaseError as e:
+        message = str(e)
+    check("a circular variable is named", "circular variable 'a'" in message, message)
 
 
 def main():
@@ -197,6 +246,8 @@ def main():
     except SystemExit as stop:
         code = stop.code
     check("batch driver refuses --end-time 0", code == 2, str(code))
+
+    check_hard_sphere_laws(root)
 
     print(f"{'FAILED: ' + ', '.join(failures) if failures else 'all passed'}")
     sys.exit(1 if failures else 0)

@@ -122,6 +122,16 @@ TEST(HardSphereEngine, ResumesBitForBit) {
   EXPECT_EQ(resumed.time(), straight.time());
 }
 
+// A LIGGGHTS data file declares its walls' atom type too (2 types, the particles all of
+// type 1): the laws cover the particles' types, so one law fits and the engine has one type.
+TEST(HardSphereEngine, TakesTheLawsOfTheParticlesTypes) {
+  const std::string file = data_file("walltype.data", "1 1 0.002 2500 0.02 0.2 0.005\n2 1 0.002 2500 0.06 0.2 0.005\n", 2, 2);
+  HardSphereOptions o = laws(0.9);
+  o.restitution = {0.9};
+  HardSphereEngine engine(o, file, kGravity);
+  EXPECT_EQ(engine.type_count(), 1);
+}
+
 TEST(HardSphereEngine, RemovesByIdAndRefusesLawsThatDoNotFit) {
   HardSphereEngine engine(laws(0.9), data_file("two.data", "7 1 0.002 2500 0.02 0.2 0.005\n9 1 0.002 2500 0.06 0.2 0.005\n", 2),
                           kGravity);
