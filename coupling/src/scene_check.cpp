@@ -89,6 +89,26 @@ void gas_findings(SceneReport &r) {
       "Re_p = " + num(n.reynolds) + " (seed 000 neglects it)");
 }
 
+// Which particle engine fits, from the two engines' measured runs (bench/README.md, "Two
+// particle engines"): on seed 000's uniform bed (U = 1.5 U_mf, bubbling throughout) the
+// hard spheres agreed with LIGGGHTS within noise at 3.9x less processor time; where spheres
+// stay in enduring contact (the jet bed's dead zones; Goldschmidt's bed at 1.0 U_mf of its
+// large spheres) event-driven collisions chatter and cost as much or far more.
+constexpr double kBubblingThroughout = 1.5;  // U / U_mf of the measured uniform bed
+
+void engine_findings(const Scene &s, SceneReport &r) {
+  const double ratio = s.gas_velocity / r.numbers.minimum_fluidization;
+  if (ratio >= kBubblingThroughout)
+    add(r, Finding::Level::Advice, "particle engine",
+        "U = " + num(ratio) + " U_mf: a bed bubbling throughout; the hard-sphere engine (dem.engine: hard_sphere) "
+        "ran seed 000's uniform bed (1.5 U_mf) within noise of LIGGGHTS at 3.9x less processor time "
+        "(bench/README.md, 'Two particle engines'), but no faster beside a jet's dead zones");
+  else
+    add(r, Finding::Level::Ok, "particle engine",
+        "U = " + num(ratio) + " U_mf: near minimum fluidization spheres stay in enduring contact, which soft "
+        "spheres (LIGGGHTS) carry at a fixed cost per step and event-driven hard spheres by ever more collisions");
+}
+
 }  // namespace
 
 double recommended_steps_per_contact(double restitution) {
@@ -188,6 +208,7 @@ SceneReport check_scene(const Scene &s) {
   void_fraction_findings(r);
   drag_findings(r);
   gas_findings(r);
+  engine_findings(s, r);
   return r;
 }
 

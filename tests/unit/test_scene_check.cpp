@@ -150,6 +150,20 @@ TEST(SceneCheck, GasStepProblemAboveTheMeasuredCourantNumber) {
   EXPECT_NE(problem.find("use <= 0.0008 s"), std::string::npos);
 }
 
+// The engine advice follows U / U_mf: seed 000's uniform bed at 1.5 U_mf (Wen-Yu U_mf 1.263
+// m/s for 2.5 mm glass in air, by hand: Ar = 1.433e6, Re_mf = 210.5) is bubbling throughout,
+// where the hard spheres measured faster; Goldschmidt's 1.30 m/s is 1.029 U_mf of its large
+// spheres.
+TEST(SceneCheck, AdvisesHardSpheresForABedBubblingThroughout) {
+  Scene s = uniform_bed();
+  s.gas_velocity = 1.52 * 1.263;
+  EXPECT_TRUE(has_finding(check_scene(s), Finding::Level::Advice, "particle engine"));
+  s.gas_velocity = 1.30;
+  const SceneReport near = check_scene(s);
+  EXPECT_TRUE(has_finding(near, Finding::Level::Ok, "particle engine"));
+  EXPECT_NE(format_report(near).find("U = 1.029 U_mf"), std::string::npos) << format_report(near);
+}
+
 TEST(SceneCheck, RejectsNonPositiveInput) {
   Scene s = uniform_bed();
   s.particle_diameter = -1.0;
