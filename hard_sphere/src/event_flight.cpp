@@ -187,18 +187,26 @@ void EventFlight::build_lists(double now, double end) {
   const double reach = 2 * largest + skin;
   int cells[3];
   double width[3];
-  for (int a = 0; a < 3; ++a) {
-    const double span = box_.upper[a] - box_.lower[a];
-    cells[a] = std::max(1, std::min(4096, static_cast<int>(span / reach)));
-    width[a] = span / cells[a];
-    if (box_.periodic[a] && cells[a] < 3)
+  for (int a = 0; a < 3; ++a)
+    if (box_.periodic[a] && box_.upper[a] - box_.lower[a] < 3 * reach)
       throw std::invalid_argument("EventFlight: a periodic axis " + std::to_string(box_.upper[a] - box_.lower[a]) +
                                   " m long holds fewer than 3 neighbour cells of " + std::to_string(reach) + " m");
+  // no more cells than a few per sphere: a few small spheres in a big box (a settling
+  // sphere) would otherwise clear millions of empty cells at every build
+  const long most_cells = std::max(64L, 8L * n);
+  long total = 0;
+  for (double cell_reach = reach; total == 0 || total > most_cells; cell_reach *= 1.25) {
+    total = 1;
+    for (int a = 0; a < 3; ++a) {
+      const double span = box_.upper[a] - box_.lower[a];
+      cells[a] = std::max(box_.periodic[a] ? 3 : 1, std::min(4096, static_cast<int>(span / cell_reach)));
+      width[a] = span / cells[a];
+      total *= cells[a];
+    }
   }
   const auto cell_of = [&](const Vec3 &x, int a) {
     return std::clamp(static_cast<int>(std::floor((x[a] - box_.lower[a]) / width[a])), 0, cells[a] - 1);
   };
-  const int total = cells[0] * cells[1] * cells[2];
   std::vector<int> start(total + 1, 0), items(n), cell(n);
   for (int i = 0; i < n; ++i) {
     cell[i] = cell_of(position[i], 0) + cells[0] * (cell_of(position[i], 1) + cells[1] * cell_of(position[i], 2));

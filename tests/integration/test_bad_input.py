@@ -17,6 +17,7 @@ import tempfile
 
 from tfdem import SOURCE_DIR, TUTORIALS, BUILD_DIR
 from tfdem.case import Case, remove_dict_entry
+from tfdem.engines import use_hard_sphere, write_data_file
 from tfdem.run import write_decompose_dict, environment
 import probe
 
@@ -562,8 +563,39 @@ DEM_ONLY = [  # tfdem-liggghts, the DEM-only runner (packing, benchmarks)
 ]
 DEM_VARS = ["-var", "steps", "10", "-var", "dumpfile", "dump.final", "-var", "weight_fraction", "1"]
 
+def hard_spheres(positions=((0.03, 0.35, 0.01),), box=((0, 0, 0), (0.06, 0.4, 0.02)), edit=None, **laws):
+    """The settling case with the hard-sphere engine on bed.data (100 um glass spheres at
+    these centres), its laws changed by `laws`, then coupling.yaml edited by `edit` (old, new)."""
+    def fault(c):
+        n = len(positions)
+        write_data_file(os.path.join(c, "bed.data"), box[0], box[1], [1e-4] * n, [2500] * n, list(positions))
+        use_hard_sphere(c, "bed.data", **{"restitution": 0.9, "tangential_restitution": 0.33, "friction": 0.1, **laws})
+        if edit:
+            probe.edit(os.path.join(c, "coupling.yaml"), *edit)
+    return fault
+
+
+HARD_SPHERE = [
+    ("e_n above 1", hard_spheres(restitution=1.2),
+     ["dem.hard_sphere.restitution", "1.2", "out of range [0, 1]"]),
+    ("friction negative", hard_spheres(friction=-0.1), ["dem.hard_sphere.friction", "-0.1", "out of range"]),
+    ("engine name misspelt", hard_spheres(edit=("engine: hard_sphere", "engine: hardsphere")),
+     ["dem.engine: unknown value 'hardsphere'", "did you mean 'hard_sphere'?"]),
+    ("a LIGGGHTS key left in", hard_spheres(edit=("engine: hard_sphere", "engine: hard_sphere\n  script: in.settling")),
+     ["dem.script: applies to the liggghts engine, not to dem.engine: hard_sphere"]),
+    ("particles file missing", hard_spheres(edit=("particles: bed.data", "particles: beds.data")),
+     ["beds.data"]),
+    ("a centre outside the box", hard_spheres(positions=((0.03, 0.35, 0.01), (0.07, 0.2, 0.01))),
+     ["id 2", "x = 0.07", "the centre outside the box", "Fix: move them inside, or widen the box"]),
+    ("two spheres at one point", hard_spheres(positions=((0.03, 0.35, 0.01), (0.03, 0.35, 0.01))),
+     ["1 pair(s) with their centres at one point", "ids 1 and 2 both at (0.03 0.35 0.01) m"]),
+    ("laws that do not fit the types", hard_spheres(restitution=[0.9, 0.8, 0.8], wall={"restitution": 0.9, "tangential_restitution": 0.33, "friction": 0.1}),
+     ["dem.hard_sphere.restitution does not fit", "3 values"]),
+    ("on 2 ranks", hard_spheres(), ["dem.engine: hard_sphere runs on one rank", "without mpirun"], {"ranks": 2}),
+]
+
 GROUPS = [("coupling.yaml", CONFIG), ("DEM script and data", DEM), ("gas case", GAS),
-          ("restart and checkpoints", RESTART), ("files, disk, locks", FILES)]
+          ("restart and checkpoints", RESTART), ("files, disk, locks", FILES), ("hard-sphere engine", HARD_SPHERE)]
 
 
 def probe_case(suite, group, name, fault, words, options):
