@@ -26,8 +26,8 @@ from tfdem import TUTORIALS
 from tfdem.accuracy import scalar_metrics
 from tfdem.batch import CaseRun, run_batch
 from tfdem.bed import BedOutputs, l1_difference
-from tfdem.case import Case, DemScript, read_data_file, sphere_volume
-from tfdem.engines import hard_sphere_laws, use_hard_sphere
+from tfdem.case import DemScript, read_data_file
+from tfdem.engines import hard_sphere_laws, type_masses, use_hard_sphere
 from tfdem.run import run
 from tfdem.stats import ensemble
 
@@ -76,19 +76,6 @@ class HardSphereRun(CaseRun):
         use_hard_sphere(case, data, **hard_sphere_laws(script, type_masses(case.file(data))))
         os.remove(case.file("in.bed"))
         run(["blockMesh"], case.path, "log.blockMesh")
-
-
-def type_masses(data_file):
-    """The mass of one particle of each atom type (1, 2, ...) of a data file; refuses a type
-    whose particles differ in mass (the laws are per pair of types)."""
-    atoms = read_data_file(data_file)
-    masses = {}
-    for t, d, rho in zip(atoms["type"], atoms["diameter"], atoms["density"]):
-        m = rho * sphere_volume(d)
-        if abs(masses.setdefault(t, m) - m) > 1e-9 * m:
-            raise EngineError(f"{data_file}: atom type {t} holds particles of different masses: "
-                              "the hard-sphere laws are per pair of types")
-    return [masses[t] for t in sorted(masses)]
 
 
 # Report ------------------------------------------------------------------------------------

@@ -128,6 +128,7 @@ class CaseRun:
         with open(log, "w") as out:
             proc = subprocess.Popen(self.command(), cwd=self.case.path, env=environment(), stdout=out,
                                     stderr=subprocess.STDOUT, start_new_session=True)
+        _keep_niceness(proc.pid)
         self.set_status(state="running", resumed_from=resume, pid=proc.pid)
         return proc
 
@@ -171,6 +172,20 @@ class CaseRun:
                     except ValueError:
                         pass
         return t, end
+
+
+def _keep_niceness(pid):
+    """Give a solver's own session the batch's niceness: the kernel shares the cores between
+    sessions (autogroups) before it weighs their processes' nice values, so a `nice` batch's
+    solvers, each in its own session, would otherwise compete with other work at full weight."""
+    niceness = os.nice(0)
+    if niceness == 0:
+        return
+    try:
+        with open(f"/proc/{pid}/autogroup", "w") as f:
+            f.write(str(niceness))
+    except OSError:  # no autogroups (a kernel without them, or not allowed): nice alone holds
+        pass
 
 
 def _is_time(path):
@@ -295,9 +310,10 @@ class VariantRun(CaseRun):
         """Steps between blockMesh and the decomposition (none here)."""
 
 
-def variants_command_line(doc, root, variants, make_run, report, default_end_time, argv=None):
+def variants_command_line(doc, root, variants, make_run, report, default_end_time, argv=None, default_variants=None):
     """`run [--end-time T] [--jobs J] [--ranks R] [--variants ...]` and `report` of a tutorial
-    whose runs are variants of it (`variants`: their names): `run` pours the tutorial's bed
+    whose runs are variants of it (`variants`: their names; `default_variants` those run
+    without --variants, all when None): `run` pours the tutorial's bed
     once (bed.data from its packing.yaml), runs the variants (make_run(name, ranks)) and then
     reports; returns the exit code."""
     from tfdem.packing import pour_case  # the pour needs the packing module only here
@@ -307,7 +323,8 @@ def variants_command_line(doc, root, variants, make_run, report, default_end_tim
     run_parser.add_argument("--end-time", type=float, default=default_end_time)
     run_parser.add_argument("--jobs", type=int, default=2)
     run_parser.add_argument("--ranks", type=int, default=1)
-    run_parser.add_argument("--variants", nargs="+", choices=sorted(variants), default=list(variants))
+    run_parser.add_argument("--variants", nargs="+", choices=sorted(variants),
+                            default=list(default_variants or variants))
     sub.add_parser("report")
     args = parser.parse_args(argv)
     if args.action == "run":

@@ -6,13 +6,13 @@ import math
 
 import yaml
 
-from tfdem.case import Case
+from tfdem.case import Case, read_data_file, sphere_volume
 
 CONTACT_PROPERTIES = ("kn", "kt", "gamman_abs", "gammat_abs", "coefficientFriction")
 
 
 class ScriptError(Exception):
-    """A DEM script whose contact model the hard-sphere engine cannot take, named."""
+    """A DEM script or data file the hard-sphere laws cannot be derived from, named."""
 
 
 def restitution_of_damping(stiffness, damping, mass):
@@ -111,3 +111,16 @@ def use_hard_sphere(case, particles, restitution, tangential_restitution, fricti
     with open(path, "w") as f:
         f.write("# the hard-sphere engine (tfdem.engines.use_hard_sphere)\n")
         yaml.safe_dump(config, f, sort_keys=False)
+
+
+def type_masses(data_file):
+    """The mass of one particle of each atom type (1, 2, ...) of a data file; refuses a type
+    whose particles differ in mass (the laws are per pair of types)."""
+    atoms = read_data_file(data_file)
+    masses = {}
+    for t, d, rho in zip(atoms["type"], atoms["diameter"], atoms["density"]):
+        m = rho * sphere_volume(d)
+        if abs(masses.setdefault(t, m) - m) > 1e-9 * m:
+            raise ScriptError(f"{data_file}: atom type {t} holds particles of different masses: "
+                              "the hard-sphere laws are per pair of types")
+    return [masses[t] for t in sorted(masses)]

@@ -14,12 +14,17 @@ The laws (coupling.yaml gives the polydisperse one):
 - polydisperse: Beetstra et al.'s (2007) monodisperse law (seed 001 eq. 6) at the local Sauter
   mean with their polydisperse correction (coupling.polydisperse_drag: beetstra_2007);
 - standard: seed 001 eq. 3-4 (Ergun, Wen-Yu) at each particle's own diameter.
+Each also with seed 001's hard spheres (<law>_hard_sphere, not run by default): the same bed
+and gas, dem.engine: hard_sphere with the LIGGGHTS contacts' e_n, beta_0 and mu
+(tfdem.engines.hard_sphere_laws).
 """
 import os
 import sys
 
 from tfdem import outputs
 from tfdem.batch import VariantRun, clock, variants_command_line
+from tfdem.case import DemScript
+from tfdem.engines import hard_sphere_laws, type_masses, use_hard_sphere
 from tfdem.stats import value_at
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -29,13 +34,28 @@ LAWS = {
 }
 # Seed 001 §5 and Fig. 11 at 60 s: s = 0.65 with the polydisperse law, "almost completely
 # segregated" with the standard one, 0.64 in Goldschmidt's experiment.
+HARD_SPHERE = "_hard_sphere"
+VARIANTS = {**LAWS, **{law + HARD_SPHERE: settings for law, settings in LAWS.items()}}
+DEFAULT_VARIANTS = tuple(LAWS)
 SEED_AT_60_S = {"polydisperse": 0.65, "experiment": 0.64}
 REPORT_TIMES = (1, 2, 5, 10, 20, 30, 60)
 
 
-def segregation_run(law, ranks, root=HERE):
-    """The run of `law` (a key of LAWS) under root/runs/<law>/."""
-    return VariantRun(law, LAWS[law], ranks, root)
+class HardSphereVariant(VariantRun):
+    """A law's run with the hard-sphere engine on the poured bed (one rank)."""
+
+    def prepare_mesh(self):
+        script = DemScript(self.case.file("in.bed"))
+        data = os.path.basename(script.read_data())
+        use_hard_sphere(self.case, data, **hard_sphere_laws(script, type_masses(self.case.file(data))))
+        os.remove(script.path)  # the engine reads the data file only
+
+
+def segregation_run(name, ranks, root=HERE):
+    """The run `name` (a key of VARIANTS) under root/runs/<name>/."""
+    if name.endswith(HARD_SPHERE):
+        return HardSphereVariant(name, VARIANTS[name], 1, root)
+    return VariantRun(name, VARIANTS[name], ranks, root)
 
 
 def segregation_series(law, root=HERE):
@@ -55,16 +75,20 @@ def report(root=HERE):
     import matplotlib.pyplot as plt
     fig, (whole, reached_axes) = plt.subplots(1, 2, figsize=(9, 3.5))
     reached_end = 0.0
-    for law, style in (("polydisperse", "k-"), ("standard", "k--")):
+    styles = {"polydisperse": "k-", "standard": "k--"}
+    for law in VARIANTS:
         t, s = segregation_series(law, root)
         if not t:
-            print(f"{law}: no samples yet")
+            if law in DEFAULT_VARIANTS:
+                print(f"{law}: no samples yet")
             continue
+        hard = law.endswith(HARD_SPHERE)
+        style = styles[law[:-len(HARD_SPHERE)] if hard else law].replace("k", "C1" if hard else "k")
         run_ = segregation_run(law, 1, root)
         reached = ", ".join(f"s({x:g} s) = {value_at(t, s, x):.3f}" for x in REPORT_TIMES if x <= t[-1] + 1e-9)
         print(f"{law}: t = {t[-1]:g} s reached ({clock(run_.cpu_seconds())} processor time); {reached}")
         for ax in (whole, reached_axes):
-            ax.plot(t, s, style, label=f"TFDEM, {law} drag")
+            ax.plot(t, s, style, label=f"TFDEM, {law.replace(HARD_SPHERE, '')} drag" + (", hard spheres" if hard else ""))
         reached_end = max(reached_end, t[-1])
     whole.plot([60], [SEED_AT_60_S["polydisperse"]], "ks", mfc="none", label="seed 001, polydisperse drag (60 s)")
     whole.plot([60], [SEED_AT_60_S["experiment"]], "ko", label="experiment (60 s)")
@@ -85,7 +109,7 @@ def report(root=HERE):
 
 
 def main(argv=None):
-    return variants_command_line(__doc__, HERE, LAWS, segregation_run, report, 60.0, argv)
+    return variants_command_line(__doc__, HERE, VARIANTS, segregation_run, report, 60.0, argv, DEFAULT_VARIANTS)
 
 
 if __name__ == "__main__":
