@@ -407,7 +407,8 @@ void Foam::TfdemCoupling::report() const
         Info<< "TFDEM hard spheres: " << label(c.pair) << " pair and " << label(c.wall)
             << " wall collisions (" << label(c.elastic) << " made elastic by the TC model), "
             << label(c.predictions) << " event predictions, " << label(c.list_builds)
-            << " neighbour lists built over " << std::to_string(hard->step()).c_str()
+            << " builds of all neighbour lists and " << label(c.lists_renewed)
+            << " of one particle's over " << std::to_string(hard->step()).c_str()
             << " flow steps" << endl;
     }
     report_.report

@@ -176,6 +176,7 @@ void HardSphereEngine::advance(double seconds, bool sample) {
   totals_.elastic += c.elastic;
   totals_.predictions += c.predictions;
   totals_.list_builds += c.list_builds;
+  totals_.lists_renewed += c.lists_renewed;
   if (sample) sample_contacts(seconds);
 }
 

@@ -10,14 +10,14 @@
 namespace tfdem::hard_sphere {
 namespace {
 
-// The slowest speed the neighbour lists allow for (m/s): a bed at rest still gets the flow
-// step's kick of gravity, and its lists must not be rebuilt on the first touch
-constexpr double kLeastAllowedSpeed = 0.01;
-// A listed partner's speed may reach this many times the fastest particle's before the lists
-// are rebuilt (eq. 44's 2 v_max is the closing speed of two particles at v_max)
-constexpr double kSpeedAllowance = 1.5;
-// The least skin, in largest diameters: lists that serve several flow steps of a slow bed
-constexpr double kSkinDiameters = 0.25;
+// The skin, in largest diameters: a pair is listed while its anchors are within R_a + R_b +
+// skin (a thicker skin lists more partners to scan at each prediction, a thinner one makes
+// particles leave their anchor's sphere, and renew their lists, more often)
+constexpr double kSkinDiameters = 0.2;
+// A particle list's room beyond the most partners found at a full build
+constexpr int kSpareFraction = 2, kLeastSpare = 8;
+// The event of leaving the anchor's sphere (walls are -1 ... -6)
+constexpr int kLeavesAnchor = -7;
 
 std::uint64_t pair_key(int i, int j) {
   return (static_cast<std::uint64_t>(std::min(i, j)) << 32) | static_cast<std::uint32_t>(std::max(i, j));
@@ -104,11 +104,10 @@ void EventFlight::restore_tolerated(std::unordered_map<std::uint64_t, double> pa
 EventFlight::Overlaps EventFlight::tolerate_overlaps() {
   Overlaps o;
   const int n = static_cast<int>(size());
-  time_.assign(n, 0);
-  path_.assign(n, 0);
-  build_lists(0, 0);
+  pack();
+  build_lists(0);
   for (int i = 0; i < n; ++i) {
-    for (int k = first_[i]; k < first_[i + 1]; ++k) {
+    for (int k = i * capacity_; k < i * capacity_ + degree_[i]; ++k) {
       const int j = partners_[k];
       if (j <= i) continue;
       const double sigma = radius[i] + radius[j], distance = norm(nearest(position[i] - position[j]));
@@ -131,21 +130,28 @@ EventFlight::Overlaps EventFlight::tolerate_overlaps() {
   return o;
 }
 
+void EventFlight::pack() {
+  motion_.resize(size());
+  for (std::size_t i = 0; i < size(); ++i) motion_[i] = {position[i], 0, velocity[i]};
+}
+
+void EventFlight::unpack() {
+  for (std::size_t i = 0; i < size(); ++i) position[i] = motion_[i].x, velocity[i] = motion_[i].v;
+}
+
 void EventFlight::advance_to(int i, double t) {
-  const double dt = t - time_[i];
-  position[i] += dt * velocity[i];
-  path_[i] += dt * norm(velocity[i]);
-  time_[i] = t;
+  Motion &m = motion_[i];
+  m.x += (t - m.t) * m.v;
+  m.t = t;
   if (!periodic_) return;
   for (int a = 0; a < 3; ++a)
     if (box_.periodic[a]) {
       const double span = box_.upper[a] - box_.lower[a];
-      position[i][a] -= span * std::floor((position[i][a] - box_.lower[a]) / span);
+      m.x[a] -= span * std::floor((m.x[a] - box_.lower[a]) / span);
     }
 }
 
-Vec3 EventFlight::nearest(Vec3 r) const {
-  if (!periodic_) return r;
+Vec3 EventFlight::wrapped(Vec3 r) const {
   for (int a = 0; a < 3; ++a)
     if (box_.periodic[a]) {
       const double span = box_.upper[a] - box_.lower[a];
@@ -155,38 +161,73 @@ Vec3 EventFlight::nearest(Vec3 r) const {
   return r;
 }
 
-bool EventFlight::lists_hold(double dt, double allowed) const {
-  if (!lists_built_ || first_.size() != size() + 1) return false;
-  double longest = 0, second = 0;
-  for (const double p : path_) {
-    if (p > longest) {
-      second = longest;
-      longest = p;
-    } else if (p > second) {
-      second = p;
-    }
-  }
-  return longest + second + 2 * allowed * dt < skin_;
+int EventFlight::cell_of(const Vec3 &x) const {
+  int c[3];
+  for (int a = 0; a < 3; ++a)
+    c[a] = std::clamp(static_cast<int>(std::floor((x[a] - box_.lower[a]) / width_[a])), 0, cells_[a] - 1);
+  return c[0] + cells_[0] * (c[1] + cells_[1] * c[2]);
 }
 
-void EventFlight::build_lists(double now, double end) {
+void EventFlight::link(int i, int cell) {
+  cell_[i] = cell;
+  previous_[i] = -1;
+  next_[i] = head_[cell];
+  if (next_[i] >= 0) previous_[next_[i]] = i;
+  head_[cell] = i;
+}
+
+void EventFlight::unlink(int i) {
+  if (previous_[i] >= 0) next_[previous_[i]] = next_[i];
+  else head_[cell_[i]] = next_[i];
+  if (next_[i] >= 0) previous_[next_[i]] = previous_[i];
+}
+
+double EventFlight::contact_distance(int i, int j) const {
+  if (!tolerated_.empty()) {
+    const auto found = tolerated_.find(pair_key(i, j));
+    if (found != tolerated_.end()) return found->second;
+  }
+  return radius[i] + radius[j];
+}
+
+void EventFlight::gather(int i, std::vector<int> &out, std::vector<double> &contact) const {
+  const int c = cell_[i];
+  const int ci[3] = {c % cells_[0], (c / cells_[0]) % cells_[1], c / (cells_[0] * cells_[1])};
+  for (int dz = -1; dz <= 1; ++dz)
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        int cc[3] = {ci[0] + dx, ci[1] + dy, ci[2] + dz};
+        bool inside = true;
+        for (int a = 0; a < 3; ++a) {
+          if (box_.periodic[a]) cc[a] = (cc[a] + cells_[a]) % cells_[a];
+          inside = inside && cc[a] >= 0 && cc[a] < cells_[a];
+        }
+        if (!inside) continue;
+        for (int j = head_[cc[0] + cells_[0] * (cc[1] + cells_[1] * cc[2])]; j >= 0; j = next_[j]) {
+          if (j == i) continue;
+          const Vec3 r = nearest(anchor_[i] - anchor_[j]);
+          const double within = radius[i] + radius[j] + skin_;
+          if (dot(r, r) >= within * within) continue;
+          out.push_back(j);
+          contact.push_back(contact_distance(i, j));
+        }
+      }
+}
+
+void EventFlight::build_lists(double now) {
   ++counts_.list_builds;
   const int n = static_cast<int>(size());
-  double fastest = 0, largest = 0;
+  double largest = 0;
+  anchor_.resize(n);
   for (int i = 0; i < n; ++i) {
     advance_to(i, now);
-    fastest = std::max(fastest, norm(velocity[i]));
+    anchor_[i] = motion_[i].x;
     largest = std::max(largest, radius[i]);
   }
-  path_.assign(n, 0);
   lists_built_ = true;
-  allowed_speed_ = std::max(kSpeedAllowance * fastest, kLeastAllowedSpeed);
-  skin_ = std::max(2 * allowed_speed_ * (end - now), kSkinDiameters * 2 * largest);
-  const double skin = skin_;
-  // cells at least as wide as the farthest reach of a listed pair
-  const double reach = 2 * largest + skin;
-  int cells[3];
-  double width[3];
+  skin_ = kSkinDiameters * 2 * largest;
+  // cells at least as wide as the farthest reach of a listed pair's anchors
+  const double reach = 2 * largest + skin_;
   for (int a = 0; a < 3; ++a)
     if (box_.periodic[a] && box_.upper[a] - box_.lower[a] < 3 * reach)
       throw std::invalid_argument("EventFlight: a periodic axis " + std::to_string(box_.upper[a] - box_.lower[a]) +
@@ -199,95 +240,124 @@ void EventFlight::build_lists(double now, double end) {
     total = 1;
     for (int a = 0; a < 3; ++a) {
       const double span = box_.upper[a] - box_.lower[a];
-      cells[a] = std::max(box_.periodic[a] ? 3 : 1, std::min(4096, static_cast<int>(span / cell_reach)));
-      width[a] = span / cells[a];
-      total *= cells[a];
+      cells_[a] = std::max(box_.periodic[a] ? 3 : 1, std::min(4096, static_cast<int>(span / cell_reach)));
+      width_[a] = span / cells_[a];
+      total *= cells_[a];
     }
   }
-  const auto cell_of = [&](const Vec3 &x, int a) {
-    return std::clamp(static_cast<int>(std::floor((x[a] - box_.lower[a]) / width[a])), 0, cells[a] - 1);
-  };
-  std::vector<int> start(total + 1, 0), items(n), cell(n);
+  degree_.clear();  // the old lists go: no contact distance to keep in them
+  head_.assign(total, -1);
+  next_.assign(n, -1);
+  previous_.assign(n, -1);
+  cell_.assign(n, 0);
+  for (int i = n - 1; i >= 0; --i) link(i, cell_of(anchor_[i]));  // each cell in index order
+  relax_tolerated();
+  std::vector<int> found;
+  std::vector<double> contact;
+  std::vector<int> first(n + 1, 0);
   for (int i = 0; i < n; ++i) {
-    cell[i] = cell_of(position[i], 0) + cells[0] * (cell_of(position[i], 1) + cells[1] * cell_of(position[i], 2));
-    ++start[cell[i] + 1];
+    gather(i, found, contact);
+    first[i + 1] = static_cast<int>(found.size());
   }
-  for (int c = 0; c < total; ++c) start[c + 1] += start[c];
-  {
-    std::vector<int> fill(start.begin(), start.end() - 1);
-    for (int i = 0; i < n; ++i) items[fill[cell[i]]++] = i;
+  int most = 0;
+  for (int i = 0; i < n; ++i) most = std::max(most, first[i + 1] - first[i]);
+  capacity_ = most + std::max(kLeastSpare, most / kSpareFraction);
+  partners_.assign(static_cast<std::size_t>(n) * capacity_, -1);
+  contact_.assign(static_cast<std::size_t>(n) * capacity_, 0);
+  degree_.assign(n, 0);
+  for (int i = 0; i < n; ++i) {
+    degree_[i] = first[i + 1] - first[i];
+    std::copy(found.begin() + first[i], found.begin() + first[i + 1], partners_.begin() + i * capacity_);
+    std::copy(contact.begin() + first[i], contact.begin() + first[i + 1], contact_.begin() + i * capacity_);
   }
-  first_.assign(n + 1, 0);
-  partners_.clear();
-  contact_.clear();
-  // tolerated overlaps: the contact distance grows to the present distance as the pair parts;
-  // those that have parted are forgotten; the same for the spheres' reach towards the walls
+}
+
+bool EventFlight::renew_list(int i, double now) {
+  ++counts_.lists_renewed;
+  advance_to(i, now);
+  anchor_[i] = motion_[i].x;
+  unlink(i);
+  link(i, cell_of(anchor_[i]));
+  for (int k = i * capacity_; k < i * capacity_ + degree_[i]; ++k) {  // out of the old partners' lists
+    const int j = partners_[k], begin = j * capacity_, end = begin + degree_[j];
+    for (int m = begin; m < end; ++m)
+      if (partners_[m] == i) {
+        partners_[m] = partners_[end - 1];
+        contact_[m] = contact_[end - 1];
+        --degree_[j];
+        break;
+      }
+  }
+  static thread_local std::vector<int> found;
+  static thread_local std::vector<double> contact;
+  found.clear();
+  contact.clear();
+  gather(i, found, contact);
+  if (static_cast<int>(found.size()) > capacity_) return false;
+  for (std::size_t k = 0; k < found.size(); ++k) {
+    const int j = found[k];
+    if (degree_[j] == capacity_) return false;
+    partners_[j * capacity_ + degree_[j]] = i;
+    contact_[j * capacity_ + degree_[j]] = contact[k];
+    ++degree_[j];
+    partners_[i * capacity_ + k] = j;
+    contact_[i * capacity_ + k] = contact[k];
+  }
+  degree_[i] = static_cast<int>(found.size());
+  return true;
+}
+
+void EventFlight::set_listed_contact(int i, int j, double distance) {
+  for (int k = i * capacity_; k < i * capacity_ + degree_[i]; ++k)
+    if (partners_[k] == j) {
+      contact_[k] = distance;
+      return;
+    }
+}
+
+void EventFlight::relax_tolerated() {
+  const bool listed = capacity_ > 0 && degree_.size() == size();
   for (auto it = tolerated_.begin(); it != tolerated_.end();) {
     const int i = static_cast<int>(it->first >> 32), j = static_cast<int>(it->first & 0xffffffffu);
-    const double distance = norm(nearest(position[i] - position[j]));
-    if (distance >= radius[i] + radius[j]) {
-      it = tolerated_.erase(it);
-    } else {
-      it->second = std::max(it->second, distance);
-      ++it;
+    const double distance = norm(nearest(motion_[i].x - motion_[j].x)), sigma = radius[i] + radius[j];
+    const bool parted = distance >= sigma;
+    if (!parted) it->second = std::max(it->second, distance);
+    if (listed) {
+      set_listed_contact(i, j, parted ? sigma : it->second);
+      set_listed_contact(j, i, parted ? sigma : it->second);
     }
+    it = parted ? tolerated_.erase(it) : std::next(it);
   }
-  for (int i = 0; i < n; ++i)
+  for (std::size_t i = 0; i < size(); ++i)
     for (int a = 0; a < 3; ++a)
       for (int side = 0; side < 2; ++side) {
         double &reach = reach_[6 * i + 2 * a + side];
         if (reach >= radius[i]) continue;
-        const double gap = side == 0 ? position[i][a] - box_.lower[a] : box_.upper[a] - position[i][a];
+        const Vec3 &x = motion_[i].x;
+        const double gap = side == 0 ? x[a] - box_.lower[a] : box_.upper[a] - x[a];
         reach = std::min(radius[i], std::max(reach, gap));
       }
-  for (int i = 0; i < n; ++i) {
-    const int ci[3] = {cell[i] % cells[0], (cell[i] / cells[0]) % cells[1], cell[i] / (cells[0] * cells[1])};
-    for (int dz = -1; dz <= 1; ++dz)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          int cc[3] = {ci[0] + dx, ci[1] + dy, ci[2] + dz};
-          bool inside = true;
-          for (int a = 0; a < 3; ++a) {
-            if (box_.periodic[a]) cc[a] = (cc[a] + cells[a]) % cells[a];
-            inside = inside && cc[a] >= 0 && cc[a] < cells[a];
-          }
-          if (!inside) continue;
-          const int c = cc[0] + cells[0] * (cc[1] + cells[1] * cc[2]);
-          for (int k = start[c]; k < start[c + 1]; ++k) {
-            const int j = items[k];
-            if (j == i) continue;
-            const Vec3 r = nearest(position[i] - position[j]);
-            const double within = radius[i] + radius[j] + skin;
-            if (dot(r, r) >= within * within) continue;
-            partners_.push_back(j);
-            double sigma = radius[i] + radius[j];
-            if (!tolerated_.empty()) {
-              const auto found = tolerated_.find(pair_key(i, j));
-              if (found != tolerated_.end()) sigma = found->second;
-            }
-            contact_.push_back(sigma);
-          }
-        }
-    first_[i + 1] = static_cast<int>(partners_.size());
-  }
 }
 
 void EventFlight::predict(int i, double now, double end) {
   ++counts_.predictions;
   double best = end;
   int partner = std::numeric_limits<int>::min();
-  const Vec3 xi = position[i] + (now - time_[i]) * velocity[i];
-  const Vec3 &vi = velocity[i];
-  for (int k = first_[i]; k < first_[i + 1]; ++k) {
+  const Motion &mi = motion_[i];
+  const Vec3 xi = mi.x + (now - mi.t) * mi.v;
+  const Vec3 &vi = mi.v;
+  for (int k = i * capacity_; k < i * capacity_ + degree_[i]; ++k) {
     const int j = partners_[k];
-    const Vec3 r = nearest(xi - (position[j] + (now - time_[j]) * velocity[j]));
-    const Vec3 u = vi - velocity[j];
+    const Motion &mj = motion_[j];
+    const Vec3 r = nearest(xi - (mj.x + (now - mj.t) * mj.v));
+    const Vec3 u = vi - mj.v;
     const double b = dot(r, u);
     if (b >= 0) continue;  // moving apart
     const double sigma = contact_[k];
     const double c = dot(r, r) - sigma * sigma;
     double t = 0;  // touching or overlapping, and approaching: now
     if (c > 0) {
+      if (c >= -2 * b * (best - now)) continue;  // t >= c / (-2 b): not before the best so far
       const double disc = b * b - dot(u, u) * c;
       if (disc <= 0) continue;  // they pass each other
       t = c / (-b + std::sqrt(disc));  // eq. 45
@@ -310,6 +380,18 @@ void EventFlight::predict(int i, double now, double end) {
         partner = -1 - (2 * a + side);
       }
     }
+  {  // leaving the anchor's sphere: |d + v t| = skin / 2
+    const Vec3 d = nearest(xi - anchor_[i]);
+    const double vv = dot(vi, vi), b = dot(d, vi), c = dot(d, d) - 0.25 * skin_ * skin_;
+    if (vv > 0) {
+      const double root = std::sqrt(std::max(b * b - vv * c, 0.0));
+      const double t = c >= 0 ? 0 : b > 0 ? -c / (b + root) : (root - b) / vv;
+      if (now + t < best) {
+        best = now + t;
+        partner = kLeavesAnchor;
+      }
+    }
+  }
   if (partner == std::numeric_limits<int>::min()) return;  // nothing before the step's end
   heap_.push_back({best, i, partner, count_[i], partner >= 0 ? count_[partner] : 0});
   std::push_heap(heap_.begin(), heap_.end(), std::greater<Event>());
@@ -318,18 +400,14 @@ void EventFlight::predict(int i, double now, double end) {
 FlightCounts EventFlight::fly(double dt) {
   counts_ = {};
   const int n = static_cast<int>(size());
-  time_.assign(n, 0);
+  pack();
   count_.assign(n, 0);
-  path_.resize(n, 0);
   std::fill(impulse.begin(), impulse.end(), Vec3{});
   heap_.clear();
-  double fastest = 0;
-  for (const Vec3 &v : velocity) fastest = std::max(fastest, norm(v));
-  const double allowed = std::max(kSpeedAllowance * fastest, kLeastAllowedSpeed);
-  if (lists_hold(dt, allowed))
-    allowed_speed_ = allowed;
+  if (lists_built_ && degree_.size() == size())
+    relax_tolerated();
   else
-    build_lists(0, dt);
+    build_lists(0);
   for (int i = 0; i < n; ++i) predict(i, 0, dt);
   const long limit = max_collisions_per_particle_ * std::max(n, 1);
   const CollisionLaw elastic{1, 0, 0};  // TC model: elastic and smooth
@@ -343,23 +421,33 @@ FlightCounts EventFlight::fly(double dt) {
       predict(a, e.time, dt);  // the partner collided since
       continue;
     }
+    if (e.partner == kLeavesAnchor) {
+      if (!renew_list(a, e.time)) {  // a list is full: all of them again, with more room
+        build_lists(e.time);
+        heap_.clear();
+        for (int i = 0; i < n; ++i) predict(i, e.time, dt);
+        continue;
+      }
+      predict(a, e.time, dt);
+      continue;
+    }
     advance_to(a, e.time);
     const double when = clock_ + e.time;
-    Sphere sa{velocity[a], spin[a], radius[a], mass[a]};
+    Sphere sa{motion_[a].v, spin[a], radius[a], mass[a]};
     if (e.partner >= 0) {
       const int b = e.partner;
       advance_to(b, e.time);
-      const Vec3 r = nearest(position[a] - position[b]);
+      const Vec3 r = nearest(motion_[a].x - motion_[b].x);
       const bool tc = when - last_collision[a] < elastic_within_ || when - last_collision[b] < elastic_within_;
-      Sphere sb{velocity[b], spin[b], radius[b], mass[b]};
+      Sphere sb{motion_[b].v, spin[b], radius[b], mass[b]};
       const Impulse j = collide(sa, sb, (1 / norm(r)) * r, tc ? elastic : law(a, b));
-      velocity[b] = sb.velocity, spin[b] = sb.spin;
+      motion_[b].v = sb.velocity, spin[b] = sb.spin;
       impulse[b] -= j.on_a;
       last_collision[b] = when;
       ++count_[b];
       ++counts_.pair;
       counts_.elastic += tc;
-      velocity[a] = sa.velocity, spin[a] = sa.spin;
+      motion_[a].v = sa.velocity, spin[a] = sa.spin;
       impulse[a] += j.on_a;
     } else {
       const int plane = -1 - e.partner, axis = plane / 2, side = plane % 2;
@@ -367,7 +455,7 @@ FlightCounts EventFlight::fly(double dt) {
       normal[axis] = side == 0 ? 1 : -1;  // into the box
       const bool tc = when - last_collision[a] < elastic_within_;
       const Impulse j = collide_with_wall(sa, normal, tc ? elastic : wall_laws_[type[a]]);
-      velocity[a] = sa.velocity, spin[a] = sa.spin;
+      motion_[a].v = sa.velocity, spin[a] = sa.spin;
       impulse[a] += j.on_a;
       ++counts_.wall;
       counts_.elastic += tc;
@@ -381,17 +469,11 @@ FlightCounts EventFlight::fly(double dt) {
            << " a particle), at t = " << when << " s";
       throw std::runtime_error(what.str());
     }
-    const bool faster = norm(velocity[a]) > allowed_speed_ || (e.partner >= 0 && norm(velocity[e.partner]) > allowed_speed_);
-    if (faster) {  // a listed partner set no longer bounds who it can reach: lists again
-      build_lists(e.time, dt);
-      heap_.clear();
-      for (int i = 0; i < n; ++i) predict(i, e.time, dt);
-      continue;
-    }
     predict(a, e.time, dt);
     if (e.partner >= 0) predict(e.partner, e.time, dt);
   }
   for (int i = 0; i < n; ++i) advance_to(i, dt);
+  unpack();
   clock_ += dt;
   return counts_;
 }

@@ -2,13 +2,16 @@
 // particles move on straight lines between collisions, processed one by one in the order they
 // occur (event-driven), each by tfdem::hard_sphere::collide (eqs. 11-21).
 //
-// The search is restricted as in eq. 44: each particle's partners are those within
-// R_a + R_b + skin, with skin at least 2 v_allow dt (v_allow = 1.5 v_max: the closing speed of
-// two particles at v_allow over a flow step) and at least kSkinDiameters of the largest
-// diameter, so the lists serve several flow steps. They are built again when an unlisted
-// pair could have closed its skin: when the two longest paths travelled since the build,
-// plus what a flow step can add, reach it, or when a collision makes a particle faster than
-// v_allow (Verlet's criterion, on paths rather than displacements). The time to a collision is eq. 45, written
+// The search is restricted as in eq. 44 by neighbour lists: each particle has an anchor (its
+// position when its list was last made), and a pair is listed while its anchors lie within
+// R_a + R_b + skin. Each particle's predicted events include leaving the sphere of radius
+// skin / 2 about its anchor (the time solved exactly on its straight path), upon which its
+// list alone is made again about its new anchor, in its partners' lists too. Two unlisted
+// particles, each within skin / 2 of an anchor more than R_a + R_b + skin from the other's,
+// cannot touch, whatever their speeds: the lists hold without any bound on the velocities or
+// the flow step, and a bed's slow particles keep theirs for many steps while its fast ones
+// renew theirs often. The anchors are binned in cells of the largest reach. The time to a
+// collision is eq. 45, written
 // without its cancellation, t = c / (-b + sqrt(b^2 - u^2 c)), b = r.u, c = r^2 - (R_a + R_b)^2:
 // a pair moving apart (b >= 0) never collides; one that touches or overlaps (c <= 0, by
 // round-off or from a soft-sphere packing) while approaching collides at once. Each particle
@@ -21,8 +24,8 @@
 // into walls. Hard spheres cannot push them apart, and a network of overlapping pairs
 // collides at one instant without end. tolerate_overlaps() takes such a pair as touching at
 // its present distance (or sphere at its present gap to the wall): that contact distance grows
-// back to R_a + R_b as the pair parts (updated whenever the lists are built), and is forgotten
-// once it has.
+// back to R_a + R_b as the pair parts (updated at the start of every flow step), and is
+// forgotten once it has.
 //
 // Inelastic collapse (seed 001 sec. 2.1: collision rates diverge as relative velocities vanish
 // in dense, dissipative beds) is kept off by the TC model of Luding and McNamara (1998): a
@@ -55,7 +58,8 @@ struct FlightCounts {
   long pair = 0, wall = 0;      // collisions processed
   long elastic = 0;              // of them, made elastic by the TC model
   long predictions = 0;          // particles whose next event was predicted
-  long list_builds = 0;          // neighbour lists built
+  long list_builds = 0;          // neighbour lists of all particles built
+  long lists_renewed = 0;        // particles' own lists made again (left their anchor's sphere)
 };
 
 class EventFlight {
@@ -95,7 +99,8 @@ class EventFlight {
   const std::unordered_map<std::uint64_t, double> &tolerated() const { return tolerated_; }
   const std::vector<double> &wall_reach() const { return reach_; }
   void restore_tolerated(std::unordered_map<std::uint64_t, double> pairs, std::vector<double> reach);
-  // Build the lists afresh at the next flow step (as a run resumed from here does)
+  // Build the lists afresh at the next flow step (as a run resumed from here does): every
+  // anchor at its particle
   void invalidate_lists() { lists_built_ = false; }
   // Open a face of the box (no wall there: an outlet)
   void open(int axis, int side) { box_.wall[axis][side] = false; }
@@ -108,12 +113,28 @@ class EventFlight {
     bool operator>(const Event &o) const { return time > o.time; }
   };
 
-  void build_lists(double now, double end);
+  // Every particle's anchor at its position at `now`, and the lists of all pairs
+  void build_lists(double now);
+  // Particle i's anchor moved to its position at `now`, its list made again (and it in its
+  // partners'); false when a partner's list is full (then build_lists)
+  bool renew_list(int i, double now);
+  // The partners of particle i about the anchors, appended to `out` with their contact distance
+  void gather(int i, std::vector<int> &out, std::vector<double> &contact) const;
+  // The contact distance of a listed pair: R_a + R_b, or a tolerated overlap's
+  double contact_distance(int i, int j) const;
+  // The tolerated pairs' contact distances and the spheres' wall reach grown towards the
+  // present distances (those that have parted forgotten)
+  void relax_tolerated();
+  void set_listed_contact(int i, int j, double distance);
+  int cell_of(const Vec3 &x) const;
+  void link(int i, int cell);
+  void unlink(int i);
   // r with the periodic axes' nearest image
-  Vec3 nearest(Vec3 r) const;
-  // Whether the lists hold every pair that can meet within the next `dt` at speeds below
-  // `allowed`
-  bool lists_hold(double dt, double allowed) const;
+  Vec3 nearest(Vec3 r) const {
+    if (!periodic_) return r;
+    return wrapped(r);
+  }
+  Vec3 wrapped(Vec3 r) const;
   void predict(int i, double now, double end);
   void advance_to(int i, double t);
   const CollisionLaw &law(int a, int b) const { return pair_laws_[type[a] * type_count_ + type[b]]; }
@@ -124,23 +145,36 @@ class EventFlight {
   double elastic_within_;
   long max_collisions_per_particle_;
   double clock_ = 0;
-  // within a step: each particle's time of its stored position, collision counter
-  std::vector<double> time_;
+  // within a step: each particle's position at its time t and its velocity, packed in one
+  // cache line (the predictions read a partner's at once), and its collision counter
+  struct alignas(64) Motion {
+    Vec3 x;
+    double t;
+    Vec3 v;
+  };
+  std::vector<Motion> motion_;
   std::vector<long> count_;
-  // partners of each particle (first_[i] .. first_[i + 1] in partners_), their skin (m), and
-  // each particle's path since they were built (m)
-  std::vector<int> first_, partners_;
-  std::vector<double> contact_;  // each listed pair's contact distance (R_a + R_b, or less)
+  // motion_ from position and velocity at time 0, and back
+  void pack();
+  void unpack();
+  // neighbour lists: particle i's partners are partners_[i * capacity_ ...] (degree_[i] of
+  // them), with each listed pair's contact distance (R_a + R_b, or less) beside them
+  std::vector<Vec3> anchor_;
+  std::vector<int> partners_, degree_;
+  std::vector<double> contact_;
+  int capacity_ = 0;
   double skin_ = 0;
+  // the anchors' cells: cells_ per axis of width_, a doubly linked list of particles per cell
+  int cells_[3] = {1, 1, 1};
+  double width_[3] = {1, 1, 1};
+  std::vector<int> head_, next_, previous_, cell_;
   // tolerated overlaps: pair (i << 32 | j, i < j) -> its contact distance; each sphere's reach
   // towards each of the 6 walls (its radius, or less)
   std::unordered_map<std::uint64_t, double> tolerated_;
   std::vector<double> reach_;
-  std::vector<double> path_;
   bool lists_built_ = false;
   bool periodic_ = false;
   std::vector<Event> heap_;
-  double allowed_speed_ = 0;
   FlightCounts counts_;
 };
 
