@@ -26,8 +26,8 @@ from tfdem import TUTORIALS
 from tfdem.accuracy import scalar_metrics
 from tfdem.batch import CaseRun, run_batch
 from tfdem.bed import BedOutputs, l1_difference
-from tfdem.case import DemScript, read_data_file
-from tfdem.engines import hard_sphere_laws, type_masses, use_hard_sphere
+from tfdem.case import read_data_file
+from tfdem.engines import convert_to_hard_sphere
 from tfdem.run import run
 from tfdem.stats import ensemble
 
@@ -66,15 +66,13 @@ class HardSphereRun(CaseRun):
 
     def prepare(self, end_time):
         source = soft_sphere_run(self.bed, self.k).case
-        script = DemScript(source.file("in.bed"))
-        data = os.path.basename(script.read_data())
+        data = os.path.basename(source.dem().read_data())
         case = source.copy_to(self.case.path, extra=(data,))
         self.case = case
         self.set_status(state="prepared", end_time=end_time)
         case.set_control(endTime=end_time, writeInterval=min(float(source.control("writeInterval")), end_time),
                          startFrom="startTime")
-        use_hard_sphere(case, data, **hard_sphere_laws(script, type_masses(case.file(data))))
-        os.remove(case.file("in.bed"))
+        convert_to_hard_sphere(case)
         run(["blockMesh"], case.path, "log.blockMesh")
 
 

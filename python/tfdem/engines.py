@@ -3,6 +3,7 @@ case's DEM script, or the hard-sphere event-driven engine, the particles of a da
 turns a case from one to the other and writes the data file the hard-sphere engine reads.
 """
 import math
+import os
 
 import yaml
 
@@ -124,3 +125,24 @@ def type_masses(data_file):
             raise ScriptError(f"{data_file}: atom type {t} holds particles of different masses: "
                               "the hard-sphere laws are per pair of types")
     return [masses[t] for t in sorted(masses)]
+
+
+# A tutorial's variants run again with the hard-sphere engine are named <variant>_hard_sphere
+HARD_SPHERE = "_hard_sphere"
+
+
+def with_hard_sphere(variants):
+    """A tutorial's variants {name: coupling.yaml settings}, and each again as
+    <name>_hard_sphere with the same settings (run by convert_to_hard_sphere)."""
+    return {**variants, **{name + HARD_SPHERE: settings for name, settings in variants.items()}}
+
+
+def convert_to_hard_sphere(case):
+    """Turn a LIGGGHTS case into the same bed with the hard-sphere engine: the particles of its
+    DEM script's data file, the laws equivalent to the script's contacts (hard_sphere_laws);
+    the script goes (the engine reads the data file only)."""
+    case = case if isinstance(case, Case) else Case(case)
+    script = case.dem()
+    data = os.path.relpath(script.read_data(), case.path)
+    use_hard_sphere(case, data, **hard_sphere_laws(script, type_masses(case.file(data))))
+    os.remove(script.path)

@@ -28,8 +28,8 @@ import re
 import shutil
 
 from tfdem import SOURCE_DIR, TUTORIALS
-from tfdem.case import Case, DemScript, read_data_file
-from tfdem.engines import hard_sphere_laws, type_masses, use_hard_sphere, write_data_file
+from tfdem.case import Case, read_data_file
+from tfdem.engines import convert_to_hard_sphere, use_hard_sphere, write_data_file
 from tfdem.fixed_bed import VELOCITIES, FixedBed
 from tfdem.outputs import particle_statistics, probes, vtk_particles
 from tfdem.physics import SettlingSphere
@@ -99,11 +99,9 @@ def bubbling(checks):
     run(["tfdem-liggghts", "-in", PACKING, "-var", "steps", "20000", "-var", "out", "bed.data", "-log", "log.liggghts"],
         packing, "log.screen")
     case = Case(copy_case(BUBBLING, "hard_sphere_bubbling"))
-    script = DemScript(case.file("in.bed"))
-    data = os.path.basename(script.read_data())
+    data = os.path.basename(case.dem().read_data())
     shutil.copy(os.path.join(packing, "bed.data"), case.file(data))
-    use_hard_sphere(case, data, **hard_sphere_laws(script, type_masses(case.file(data))))
-    os.remove(case.file("in.bed"))
+    convert_to_hard_sphere(case)
     case.set_control(endTime=1.0, writeInterval=1.0)
     case.set_coupling("output.statistics_interval", 0.05)
     run(["blockMesh"], case.path, "log.blockMesh")

@@ -23,8 +23,7 @@ import sys
 
 from tfdem import outputs
 from tfdem.batch import VariantRun, clock, variants_command_line
-from tfdem.case import DemScript
-from tfdem.engines import hard_sphere_laws, type_masses, use_hard_sphere
+from tfdem.engines import HARD_SPHERE, convert_to_hard_sphere, with_hard_sphere
 from tfdem.stats import value_at
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -34,8 +33,7 @@ LAWS = {
 }
 # Seed 001 §5 and Fig. 11 at 60 s: s = 0.65 with the polydisperse law, "almost completely
 # segregated" with the standard one, 0.64 in Goldschmidt's experiment.
-HARD_SPHERE = "_hard_sphere"
-VARIANTS = {**LAWS, **{law + HARD_SPHERE: settings for law, settings in LAWS.items()}}
+VARIANTS = with_hard_sphere(LAWS)
 DEFAULT_VARIANTS = tuple(LAWS)
 SEED_AT_60_S = {"polydisperse": 0.65, "experiment": 0.64}
 REPORT_TIMES = (1, 2, 5, 10, 20, 30, 60)
@@ -45,10 +43,7 @@ class HardSphereVariant(VariantRun):
     """A law's run with the hard-sphere engine on the poured bed (one rank)."""
 
     def prepare_mesh(self):
-        script = DemScript(self.case.file("in.bed"))
-        data = os.path.basename(script.read_data())
-        use_hard_sphere(self.case, data, **hard_sphere_laws(script, type_masses(self.case.file(data))))
-        os.remove(script.path)  # the engine reads the data file only
+        convert_to_hard_sphere(self.case)
 
 
 def segregation_run(name, ranks, root=HERE):

@@ -3,6 +3,10 @@
     bubble.py run [--jobs 2] [--ranks 1] [--variants beetstra ergun_wen_yu]
     bubble.py report
 
+Each law also with seed 001's hard spheres (--variants beetstra_hard_sphere ...; one rank,
+not run by default): the same bed, dem.engine hard_sphere with the contacts' e_n, beta_0 and
+mu (tfdem.engines.convert_to_hard_sphere).
+
 `run` pours the bed once (bed.data, tfdem.packing from packing.yaml) and runs each law in
 runs/<law>/ (resumable: a stopped run resumes from its last write, a finished one is
 skipped). `report` finds the bubble in every written gas-fraction field (tfdem.bubble: the
@@ -22,6 +26,7 @@ import numpy
 from tfdem import bubble, outputs
 from tfdem.batch import VariantRun, clock, variants_command_line
 from tfdem.case import Case, CaseError
+from tfdem.engines import HARD_SPHERE, convert_to_hard_sphere, with_hard_sphere
 from tfdem.run import run
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -29,18 +34,23 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 # one is seed 001 eq. 3-4 (Ergun below eps_g = 0.8, Wen-Yu above).
 LAWS = {"beetstra": {"coupling.drag_law": "beetstra"},
         "ergun_wen_yu": {"coupling.drag_law": "ergun_wen_yu_review"}}
+VARIANTS = with_hard_sphere(LAWS)
 AFTER_INJECTION = (0.1, 0.2, 0.4)  # s, seed 001 Fig. 8
 
 
 class BubbleRun(VariantRun):
-    """The run of `law` (a key of LAWS) under root/runs/<law>/, with the cell centres the
-    bubble's map needs."""
+    """The run of `law` (a key of VARIANTS: a law, or a law with the hard spheres, one rank)
+    under root/runs/<law>/, with the cell centres the bubble's map needs."""
 
     def __init__(self, law, ranks, root=HERE):
-        super().__init__(law, LAWS[law], ranks, root)
+        hard = law.endswith(HARD_SPHERE)
+        super().__init__(law, VARIANTS[law], 1 if hard else ranks, root)
+        self.hard_sphere = hard
 
     def prepare_mesh(self):
         run(["postProcess", "-func", "writeCellCentres", "-time", "0"], self.case.path, "log.writeCellCentres")
+        if self.hard_sphere:
+            convert_to_hard_sphere(self.case)
 
 
 def jet_window(case):
@@ -110,7 +120,7 @@ def report(root=HERE):
     t_jet, t_off = jet_window(case)
     print(f"jet from {t_jet:g} s to {t_off:g} s")
     histories = {}
-    for law in LAWS:
+    for law in VARIANTS:
         path = os.path.join(root, "runs", law)
         if not os.path.isdir(path):
             continue
@@ -186,7 +196,8 @@ def draw_snapshots(root, histories, t_jet, plt):
 
 def main(argv=None):
     end_time = float(Case(HERE).control("endTime"))
-    return variants_command_line(__doc__, HERE, LAWS, BubbleRun, report, end_time, argv)
+    return variants_command_line(__doc__, HERE, VARIANTS, BubbleRun, report, end_time, argv,
+                                 default_variants=LAWS)
 
 
 if __name__ == "__main__":
