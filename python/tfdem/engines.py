@@ -45,18 +45,32 @@ def contact_properties(script):
     return tables
 
 
+def wall_type(script, type_count):
+    """The atom type (1-based) of a LIGGGHTS script's walls: the `type` of its `fix ...
+    wall/gran` commands (one for all), else the last of the contact tables' type_count."""
+    found = {int(w[w.index("type") + 1]) for w in script.commands("fix")
+             if len(w) > 3 and w[2] == "wall/gran" and "type" in w[3:-1]}
+    if len(found) > 1:
+        raise ScriptError(f"{script.path}: its walls are of atom types {sorted(found)}: the hard-sphere laws take "
+                          "one wall law per particle type")
+    return found.pop() if found else type_count
+
+
 def hard_sphere_laws(script, masses):
     """Seed 001's hard-sphere coefficients (e_n, beta_0, mu; eqs. 17, 19, 21) equivalent to a
     LIGGGHTS script's (a DemScript) linear spring-dashpot contacts (eqs. 24-30): e_n from k_n, eta_n and m_ab
     (eq. 27), beta_0 from k_t, eta_t and 2/7 m_ab (eq. 30, a sticking contact), mu as given.
-    `masses`: one particle mass per particle type (types 1..n; the script's last type, n + 1,
-    is the walls', whose mass is infinite: m_ab = m_a). Returns the keyword arguments of
-    use_hard_sphere: matrices over the particle types and the walls' lists."""
+    `masses`: one particle mass per particle type (types 1..n); the walls' type (wall_type)
+    has infinite mass: m_ab = m_a; types the tables declare beyond the particles' hold none
+    and need no law. Returns the keyword arguments of use_hard_sphere: matrices over the
+    particle types and the walls' lists."""
     tables = contact_properties(script)
     n = len(masses)
-    if len(tables["kn"]) != n + 1:
-        raise ScriptError(f"{script.path}: {len(tables['kn'])} atom types in its contact tables, expected {n} particle "
-                          f"types and the walls' ({n + 1})")
+    declared = len(tables["kn"])
+    wall = wall_type(script, declared) - 1
+    if declared < n + 1 or wall < n:
+        raise ScriptError(f"{script.path}: {declared} atom types in its contact tables, the walls' type "
+                          f"{wall + 1}: expected {n} particle types before the walls'")
 
     def laws(pairs):
         e, beta, mu = [], [], []
@@ -68,7 +82,7 @@ def hard_sphere_laws(script, masses):
         return {"restitution": one(e), "tangential_restitution": one(beta), "friction": one(mu)}
 
     pair = laws([(a, b, masses[a] * masses[b] / (masses[a] + masses[b])) for a in range(n) for b in range(n)])
-    pair["wall"] = laws([(a, n, masses[a]) for a in range(n)])
+    pair["wall"] = laws([(a, wall, masses[a]) for a in range(n)])
     return pair
 
 

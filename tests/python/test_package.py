@@ -64,6 +64,20 @@ fix m5 all property/global coefficientFriction peratomtypepair 2 0.1 0.3 0.3 0.3
     check("hard-sphere laws: the walls' own, undamped tangential elastic",
           abs(wall["restitution"] - by_hand) < 1e-12 and wall["tangential_restitution"] == 1.0
           and wall["friction"] == 0.3, str(wall))
+    # tables of 3 types, the particles all type 1, the walls type 3 (fix wall/gran ... type 3, as
+    # the single bubble's script): the walls' law is the 1-3 entry, type 2 is not used
+    write(path, """fix m1 all property/global kn peratomtypepair 3 800 800 1200 800 800 800 1200 800 1200
+fix m2 all property/global kt peratomtypepair 3 200 200 200 200 200 200 200 200 200
+fix m3 all property/global gamman_abs peratomtypepair 3 0.00177 0.05 0.00393 0.05 0.05 0.05 0.00393 0.05 0.00393
+fix m4 all property/global gammat_abs peratomtypepair 3 0 0 0 0 0 0 0 0 0
+fix m5 all property/global coefficientFriction peratomtypepair 3 0.1 0.9 0.3 0.9 0.9 0.9 0.3 0.9 0.3
+fix floor all wall/gran model hooke/stiffness tangential history primitive type 3 yplane 0 absolute_damping on
+""")
+    three = hard_sphere_laws(DemScript(path), [m])
+    check("hard-sphere laws: the walls' type from fix wall/gran (type 3 of 3, type 2 unused)",
+          abs(three["wall"]["restitution"] - by_hand) < 1e-12 and three["wall"]["friction"] == 0.3
+          and abs(three["restitution"] - math.exp(-math.pi * 0.00177 / math.sqrt(4 * m / 2 * 800 - 0.00177 ** 2))) < 1e-12,
+          str(three))
     seed000 = restitution_of_damping(800, 0.00177, m / 2)
     check("seed 000's uniform bed: e_n ~ 0.97 (SPEC)", abs(seed000 - 0.97) < 0.005, f"{seed000:.4f}")
     check("critical damping: e = 0", restitution_of_damping(800, 2 * math.sqrt(m * 800), m) == 0.0)
