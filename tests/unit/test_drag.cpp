@@ -1,8 +1,7 @@
 // Drag closures: seed 000 eq. 29-31, seed 001 eq. 3-6, Di Felice (1994), Koch & Hill (2001).
-// Expected values are written out as the formulas, independent of the implementation.
+// Expected values are numbers worked out from the published formulas (the arithmetic in each
+// test's comment), independent of the implementation.
 #include <gtest/gtest.h>
-
-#include <cmath>
 
 #include "tfdem/drag.h"
 
@@ -13,7 +12,9 @@ using namespace tfdem::drag;
 const Gas kAir{1.2, 1.8e-5};
 constexpr double kD = 2.5e-3;  // uniform-bed particle diameter (m)
 
-double stokes() { return 18.0 * kAir.viscosity / (kD * kD); }
+// Stokes drag of a lone sphere as beta/eps_s, by hand: 18 mu/d^2 = 18 * 1.8e-5 / (2.5e-3)^2
+// = 3.24e-4 / 6.25e-6 = 51.84 kg/m^3/s.
+constexpr double kStokes = 51.84;
 
 // A state in the Stokes limit: lone particle (eps_s = 1e-9), Re ~ 1e-8.
 State stokes_state() {
@@ -23,23 +24,26 @@ State stokes_state() {
 }
 
 // Every closure but min(Ergun, Wen-Yu) reduces to Stokes drag 3 pi mu d (u - v) for a lone
-// particle at Re -> 0, i.e. beta/eps_s -> 18 mu/d^2 (Di Felice: 4.8^2/24 of it). Tolerance
-// 1e-4: the leading corrections are 3/sqrt(2) sqrt(eps_s) ~ 7e-5 and 0.15 Re^0.687 ~ 5e-7.
+// particle at Re -> 0, i.e. beta/eps_s -> kStokes = 51.84 kg/m^3/s (by hand above). Di Felice's
+// C_D -> 4.8^2/Re = 23.04/Re instead of 24/Re: 0.96 * 51.84 = 49.7664 kg/m^3/s. Relative
+// tolerance 1e-4 (a 1 % error fails): the leading corrections are 3/sqrt(2) sqrt(eps_s) ~ 7e-5
+// (Koch-Hill, Hill-Koch-Ladd), 0.15 Re^0.687 ~ 5e-7 (Wen-Yu), 2 * 0.63 sqrt(Re)/4.8 ~ 3e-5 (Di Felice).
 TEST(Drag, StokesLimitOfEachLaw) {
   for (Law law : {Law::ErgunWenYu, Law::ErgunWenYuReview, Law::HillKochLadd, Law::Beetstra, Law::KochHill}) {
-    EXPECT_NEAR(beta_per_solid_fraction(law, stokes_state(), kAir) / stokes(), 1.0, 1e-4) << law_name(law);
+    EXPECT_NEAR(beta_per_solid_fraction(law, stokes_state(), kAir), kStokes, 1e-4 * kStokes) << law_name(law);
   }
-  EXPECT_NEAR(beta_per_solid_fraction(Law::DiFelice, stokes_state(), kAir) / stokes(), 4.8 * 4.8 / 24.0, 1e-4);
+  EXPECT_NEAR(beta_per_solid_fraction(Law::DiFelice, stokes_state(), kAir), 49.7664, 1e-4 * 49.7664);
 }
 
-// Stokes' sphere: at its terminal velocity u_t = (rho_p - rho_g) g d^2 / (18 mu) (Stokes
-// 1851) the drag V_p (beta/eps_s) u_t balances the net weight (rho_p - rho_g) g V_p.
+// Stokes' sphere by hand, a 50 um glass bead (2500 kg/m^3) in air: 18 mu/d^2 = 3.24e-4 /
+// 2.5e-9 = 129600 kg/m^3/s. Its terminal velocity (Stokes 1851) u_t = (rho_p - rho_g) g d^2 /
+// (18 mu) = 2498.8 * 9.81 * 2.5e-9 / 3.24e-4 = 6.128307e-5 / 3.24e-4 = 0.18914528 m/s, where the
+// drag per particle volume (beta/eps_s) u_t balances the net weight per volume 2498.8 * 9.81 =
+// 24513.228 N/m^3.
 TEST(Drag, StokesDragBalancesWeightAtStokesTerminalVelocity) {
-  const double d = 5e-5, rho_p = 2500.0, g = 9.81;
-  const double u_t = (rho_p - kAir.density) * g * d * d / (18.0 * kAir.viscosity);
-  const double volume = 3.14159265358979323846 * d * d * d / 6.0;
-  EXPECT_NEAR(stokes_beta_per_solid_fraction(d, kAir) * volume * u_t, (rho_p - kAir.density) * g * volume,
-              1e-12 * rho_p * g * volume);
+  const double stokes_50um = stokes_beta_per_solid_fraction(5e-5, kAir);
+  EXPECT_NEAR(stokes_50um, 129600.0, 1e-12 * 129600.0);
+  EXPECT_NEAR(stokes_50um * 0.18914528, 24513.228, 1e-7 * 24513.228);
 }
 
 // Values at general states computed outside this code (a separate Python implementation of
@@ -61,56 +65,65 @@ TEST(Drag, HandComputedValuesAtGeneralStates) {
         << law_name(p.law) << " at eps_g " << p.void_fraction;
 }
 
-// Documented: min(Ergun, Wen-Yu) takes Ergun in the dilute low-Re limit, far below Stokes.
+// Documented: min(Ergun, Wen-Yu) takes Ergun in the dilute low-Re limit, far below Stokes. By
+// hand at the Stokes state (eps_s = 1e-9, |u - v| = 1e-8 mu / (eps_g rho d) = 6e-11 m/s):
+// beta/eps_s = 150 eps_s mu / (eps_g d^2) + 1.75 rho |u - v| / d = 4.32e-7 + 840 * 6e-11 =
+// 4.824e-7 kg/m^3/s, 1e-8 of kStokes. Tolerance 2e-7 relative: eps_s = 1 - (1 - 1e-9) in
+// doubles is 1e-9 only to within half an ulp of 1 (5.6e-17), i.e. 5.6e-8 relative.
 TEST(Drag, MinErgunWenYuMissesStokesLimitAsDocumented) {
-  const State s = stokes_state();
-  const double eps_s = 1.0 - s.void_fraction;
-  const double ergun = 150.0 * eps_s * kAir.viscosity / (s.void_fraction * kD * kD) + 1.75 * kAir.density * s.slip_speed / kD;
-  EXPECT_NEAR(beta_per_solid_fraction(Law::MinErgunWenYu, s, kAir), ergun, 1e-9 * ergun);
-  EXPECT_LT(ergun, 1e-3 * stokes());
+  const double min_law = beta_per_solid_fraction(Law::MinErgunWenYu, stokes_state(), kAir);
+  EXPECT_NEAR(min_law, 4.824e-7, 2e-7 * 4.824e-7);
+  EXPECT_LT(min_law, 1e-3 * kStokes);
 }
 
-TEST(Drag, ReynoldsNumberUsesGasFraction) {
-  EXPECT_DOUBLE_EQ(reynolds({0.9, kD, 1.0}, kAir), 0.9 * 1.2 * 1.0 * kD / 1.8e-5);
+// By hand: Re = eps_g rho |u - v| d / mu = 0.9 * 1.2 * 1.0 * 2.5e-3 / 1.8e-5 = 2.7e-3 / 1.8e-5
+// = 150 (the superficial 1.2 * 2.5e-3 / 1.8e-5 = 166.67 would fail).
+TEST(Drag, ReynoldsNumberUsesGasFraction) { EXPECT_NEAR(reynolds({0.9, kD, 1.0}, kAir), 150.0, 1e-12 * 150.0); }
+
+// Schiller-Naumann C_D = 24/Re (1 + 0.15 Re^0.687) by hand: Re = 10: 10^0.687 = 4.864072,
+// C_D = 2.4 * (1 + 0.7296108) = 4.151066. Just below Re = 1000: 1000^0.687 = 10^2.061 =
+// 115.0800, C_D = 0.024 * (1 + 17.26201) = 0.4382881; at and above 1000 the law's Newton value
+// (0.43 of seed 000 eq. 31, 0.44 of seed 001 eq. 4): jumps of -1.89 % and +0.39 %.
+TEST(Drag, DragCoefficientIsSchillerNaumannBelowRe1000AndNewtonValueAbove) {
+  EXPECT_NEAR(drag_coefficient(10.0, 0.44), 4.151066, 1e-6 * 4.151066);
+  EXPECT_NEAR(drag_coefficient(1000.0 * (1 - 1e-12), 0.44), 0.4382881, 1e-6 * 0.4382881);
+  EXPECT_EQ(drag_coefficient(1000.0, 0.43), 0.43);
+  EXPECT_EQ(drag_coefficient(1000.0, 0.44), 0.44);
+  EXPECT_EQ(drag_coefficient(5000.0, 0.43), 0.43);
 }
 
-TEST(Drag, DragCoefficientIsSchillerNaumannBelowRe1000) {
-  EXPECT_DOUBLE_EQ(drag_coefficient(10.0, 0.44), 24.0 * (1.0 + 0.15 * std::pow(10.0, 0.687)) / 10.0);
-  EXPECT_DOUBLE_EQ(drag_coefficient(1000.0, 0.43), 0.43);
-  // Schiller-Naumann reaches 0.4385 at Re = 1000: the switch to 0.43/0.44 jumps by < 2 %.
-  const double below = drag_coefficient(1000.0 * (1 - 1e-12), 0.44);
-  EXPECT_NEAR(below / 0.44, 1.0, 0.02);
-  EXPECT_NEAR(below / 0.43, 1.0, 0.02);
+// Wen-Yu in the Newton regime tells the paper's law (C_D = 0.43, eps_g^-2.7, seed 000 eq.
+// 30-31) from the review's (0.44, eps_g^-2.65, seed 001 eq. 4), 1.8 % apart. By hand at eps_g =
+// 0.9 and Re = 2000: |u - v| = Re mu / (eps_g rho d) = 0.036 / 0.0027 = 13.33333 m/s, eps_g rho
+// |u - v| / d = 14.4 / 2.5e-3 = 5760, beta = 3/4 C_D eps_s 5760 eps_g^-n: paper 0.75 * 0.43 *
+// 576 * 0.9^-2.7 = 185.76 * 1.329062 = 246.8865, review 0.75 * 0.44 * 576 * 0.9^-2.65 = 190.08 *
+// 1.322079 = 251.3007 kg/m^3/s.
+TEST(Drag, NewtonRegimeWenYuUsesEachLawsDragCoefficientAndExponent) {
+  const State newton{0.9, kD, 2000.0 * kAir.viscosity / (0.9 * kAir.density * kD)};
+  EXPECT_NEAR(beta(Law::ErgunWenYu, newton, kAir), 246.8865, 1e-6 * 246.8865);
+  EXPECT_NEAR(beta(Law::ErgunWenYuReview, newton, kAir), 251.3007, 1e-6 * 251.3007);
 }
 
-// Seed 000 eq. 30 by hand: Ergun at eps_g = 0.5, Wen-Yu (eps_g^-2.7, C_D of eq. 31) at 0.9.
+// Seed 000 eq. 30 by hand at a slip of 1 m/s. Ergun at eps_g = 0.5: beta = 150 eps_s^2 mu /
+// (eps_g d^2) + 1.75 eps_s rho |u - v| / d = 6.75e-4 / 3.125e-6 + 1.05 / 2.5e-3 = 216 + 420 = 636.
+// Wen-Yu at eps_g = 0.9: Re = 150, 150^0.687 = 31.25897, C_D = 0.16 * (1 + 4.688846) =
+// 0.9102153, beta = 3/4 C_D eps_s eps_g rho |u - v| / d eps_g^-n = 0.75 * 0.9102153 * 0.1 * 432
+// * 0.9^-n = 29.49098 * 1.329062 (n = 2.7) = 39.19534, and * 1.322079 (n = 2.65, the review's
+// exponent; C_D is the same below Re = 1000) = 38.98940 kg/m^3/s.
 TEST(Drag, PaperLawHandComputedPoints) {
-  const double mu = kAir.viscosity, rho = kAir.density, u = 1.0;
-  {
-    const double eg = 0.5, es = 0.5;
-    const double expected = 150.0 * es * es * mu / (eg * kD * kD) + 1.75 * es * rho * u / kD;
-    EXPECT_NEAR(beta(Law::ErgunWenYu, {eg, kD, u}, kAir), expected, 1e-12 * expected);
-  }
-  {
-    const double eg = 0.9, es = 0.1;
-    const double re = kD * rho * u * eg / mu;
-    const double cd = 24.0 * (1.0 + 0.15 * std::pow(re, 0.687)) / re;
-    const double expected = 0.75 * cd * es * eg * rho * u / kD * std::pow(eg, -2.7);
-    EXPECT_NEAR(beta(Law::ErgunWenYu, {eg, kD, u}, kAir), expected, 1e-12 * expected);
-    const double review = 0.75 * cd * es * eg * rho * u / kD * std::pow(eg, -2.65);
-    EXPECT_NEAR(beta(Law::ErgunWenYuReview, {eg, kD, u}, kAir), review, 1e-12 * review);
-  }
+  EXPECT_NEAR(beta(Law::ErgunWenYu, {0.5, kD, 1.0}, kAir), 636.0, 1e-12 * 636.0);
+  EXPECT_NEAR(beta(Law::ErgunWenYu, {0.9, kD, 1.0}, kAir), 39.19534, 1e-6 * 39.19534);
+  EXPECT_NEAR(beta(Law::ErgunWenYuReview, {0.9, kD, 1.0}, kAir), 38.98940, 1e-6 * 38.98940);
 }
 
-// The paper's switch at eps_g = 0.8 is a jump, asserted as such: at a bubbling-bed slip of
-// 1 m/s, Ergun (below) and Wen-Yu (at and above) differ; the value below equals Ergun.
+// The paper's switch at eps_g = 0.8 is a jump, by hand at a bubbling-bed slip of 1 m/s. Just
+// below, Ergun: 150 * 0.04 * 1.8e-5 / (0.8 * 6.25e-6) + 1.75 * 0.2 * 1.2 / 2.5e-3 = 21.6 + 168 =
+// 189.6. At 0.8, Wen-Yu: Re = 0.8 * 1.2 * 2.5e-3 / 1.8e-5 = 133.3333, Re^0.687 = 28.82922, C_D =
+// 0.18 * (1 + 4.324383) = 0.9583890, beta = 0.75 * 0.9583890 * 0.2 * 384 * 0.8^-2.7 = 55.20320 *
+// 1.826657 = 100.8373 kg/m^3/s (47 % below).
 TEST(Drag, PaperSwitchAtPointEightJumpsAsDocumented) {
-  const double mu = kAir.viscosity, rho = kAir.density, u = 1.0, es = 0.2;
-  const double below = beta(Law::ErgunWenYu, {0.8 - 1e-12, kD, u}, kAir);
-  const double at = beta(Law::ErgunWenYu, {0.8, kD, u}, kAir);
-  const double ergun = 150.0 * es * es * mu / (0.8 * kD * kD) + 1.75 * es * rho * u / kD;
-  EXPECT_NEAR(below, ergun, 1e-9 * ergun);
-  EXPECT_GT(std::abs(at / below - 1.0), 0.05);
+  EXPECT_NEAR(beta(Law::ErgunWenYu, {0.8 - 1e-12, kD, 1.0}, kAir), 189.6, 1e-9 * 189.6);
+  EXPECT_NEAR(beta(Law::ErgunWenYu, {0.8, kD, 1.0}, kAir), 100.8373, 1e-6 * 100.8373);
 }
 
 // min(Ergun, Wen-Yu) is continuous at 0.8 (both branches are continuous there).
@@ -135,28 +148,25 @@ TEST(Drag, LatticeBoltzmannLawsNearlyContinuousAtTheirSwitches) {
   }
 }
 
-// Beetstra by hand at eps_g = 0.6, Re = 50 and in a packed bed (eps_g = 0.4, Re = 200) from
-// Beetstra, van der Hoef & Kuipers (2007) in their own normalisation, as MFiX codes it
-// (DRAG_BVK): F = 10 phi/eps^2 + eps^2 (1 + 1.5 sqrt(phi)) + 0.413 Re/(24 eps^2)
-// (1/eps + 3 eps phi + 8.4 Re^-0.343)/(1 + 10^(3 phi) Re^-(1 + 4 phi)/2),
-// beta = 18 mu eps phi F / d^2, Re = eps rho |u - v| d / mu.
+// Beetstra by hand at eps_g = 0.6, Re = 50 (slip 0.5 m/s) and in a packed bed (eps_g = 0.4,
+// Re = 200, slip 3 m/s) from Beetstra, van der Hoef & Kuipers (2007) in their own
+// normalisation, as MFiX codes it (DRAG_BVK): F = 10 phi/eps^2 + eps^2 (1 + 1.5 sqrt(phi)) +
+// 0.413 Re/(24 eps^2) (1/eps + 3 eps phi + 8.4 Re^-0.343)/(1 + 10^(3 phi) Re^-(1 + 4 phi)/2),
+// beta/eps_s = 18 mu eps F / d^2 = 51.84 eps F.
+//   eps 0.6: F = 11.11111 + 0.701526 + 2.390046 * 4.582162 / (1 + 15.84893 * 0.00618499)
+//            = 11.11111 + 0.701526 + 10.95158 / 1.098025 = 21.78652, beta/eps_s = 31.104 F = 677.6480;
+//   eps 0.4: F = 37.5 + 0.3459032 + 21.51042 * 4.584665 / (1 + 63.09573 * 1.225319e-4)
+//            = 37.5 + 0.3459032 + 98.61805 / 1.007731 = 135.7074, beta/eps_s = 20.736 F = 2814.028.
 TEST(Drag, BeetstraHandComputedPoints) {
-  for (const auto &[eg, re] : {std::pair{0.6, 50.0}, std::pair{0.4, 200.0}}) {
-    const double phi = 1.0 - eg;
-    const double u = re * kAir.viscosity / (eg * kAir.density * kD);
-    const double f = 10.0 * phi / (eg * eg) + eg * eg * (1.0 + 1.5 * std::sqrt(phi)) +
-                     0.413 * re / (24.0 * eg * eg) * (1.0 / eg + 3.0 * eg * phi + 8.4 * std::pow(re, -0.343)) /
-                         (1.0 + std::pow(10.0, 3.0 * phi) * std::pow(re, -(1.0 + 4.0 * phi) / 2.0));
-    const double expected = 18.0 * kAir.viscosity * eg * f / (kD * kD);  // beta / eps_s
-    EXPECT_NEAR(beta_per_solid_fraction(Law::Beetstra, {eg, kD, u}, kAir), expected, 1e-12 * expected) << eg;
-  }
+  EXPECT_NEAR(beta_per_solid_fraction(Law::Beetstra, {0.6, kD, 0.5}, kAir), 677.6480, 1e-6 * 677.6480);
+  EXPECT_NEAR(beta_per_solid_fraction(Law::Beetstra, {0.4, kD, 3.0}, kAir), 2814.028, 1e-6 * 2814.028);
 }
 
 // Dense packed bed: every Ergun-type law gives beta/eps_s > Stokes (hindered settling).
 TEST(Drag, DenseBedDragExceedsStokes) {
   for (std::size_t i = 0; i < law_names().size(); ++i) {
     const Law law = static_cast<Law>(i);
-    EXPECT_GT(beta_per_solid_fraction(law, {0.45, kD, 0.5}, kAir), stokes()) << law_name(law);
+    EXPECT_GT(beta_per_solid_fraction(law, {0.45, kD, 0.5}, kAir), kStokes) << law_name(law);
   }
 }
 

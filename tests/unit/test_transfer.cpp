@@ -123,12 +123,83 @@ TEST(Transfer, ConservativeMethodsBalanceMomentum) {
   }
 }
 
-// The paper's method 2 is not conservative when particles of a cell move differently: the
-// imbalance is reported (here well above round-off).
-TEST(Transfer, PaperPerParticleImbalanceIsReported) {
-  const Bed b = make_bed(false, 3);
-  const TransferResult r = run(b, map(b, VoidFractionMethod::Centroid), TransferMethod::PerParticle);
-  EXPECT_GT(relative_imbalance(r), 1e-6);
+// V_p of a 2.5 mm sphere: pi/6 * 1.5625e-8 = 8.18123086872342e-9 m^3.
+constexpr double kVp = 8.18123086872342e-9;
+
+// Two cells by hand (centroid mapping, 2.5 mm spheres, Ergun): cell 0 (volume 8 V_p) holds
+// particles 1 and 2 at rest and rising at 0.4 m/s under gas at (0, 1, 0) m/s; cell 1 (4 V_p)
+// holds particle 3 rising at 0.6 m/s under gas at (0.3, 1, 0) m/s. The cell volumes are set for
+// eps_g = 0.75 in both (the grid's 4 mm cubes only locate the particles), so Ergun (seed 000
+// eq. 30) gives beta/eps_s = 150 * 0.25 * 1.8e-5 / (0.75 * 6.25e-6) + 1.75 * 1.2 / 2.5e-3 |s|
+// = 144 + 840 |s| kg/m^3/s at slip s.
+Bed two_cell_bed() {
+  Bed b;
+  b.grid.origin = {0, 0, 0};
+  b.grid.spacing = {0.004, 0.004, 0.004};
+  b.grid.count = {2, 1, 1};
+  b.position = {0.00125, 0.00125, 0.00125, 0.00275, 0.00275, 0.00275, 0.006, 0.002, 0.002};
+  b.velocity = {0.0, 0.0, 0.0, 0.0, 0.4, 0.0, 0.0, 0.6, 0.0};
+  b.diameter = {0.0025, 0.0025, 0.0025};
+  b.density = {2526.0, 2526.0, 2526.0};
+  b.cell_velocity = {0.0, 1.0, 0.0, 0.3, 1.0, 0.0};
+  b.cell_volume = {8.0 * kVp, 4.0 * kVp};
+  return b;
+}
+
+// Per-particle drag of two_cell_bed by hand (eq. 29, f = V_p (144 + 840 |s|) s): slips 1, 0.6
+// and (0.3, 0.4) m/s give (144 + 840) * 1 = 984 V_p, (144 + 504) * 0.6 = 388.8 V_p and
+// (144 + 420) * (0.3, 0.4) = (169.2, 225.6) V_p, sum of magnitudes 984 + 388.8 + 282 = 1654.8 V_p.
+void expect_two_cell_particle_drag(const TransferResult &r) {
+  const double expected[9] = {0.0, 984.0 * kVp, 0.0, 0.0, 388.8 * kVp, 0.0, 169.2 * kVp, 225.6 * kVp, 0.0};
+  for (int k = 0; k < 9; ++k) EXPECT_NEAR(r.particle_drag[k], expected[k], 1e-12 * 984.0 * kVp) << k;
+  EXPECT_NEAR(r.drag_magnitude_sum, 1654.8 * kVp, 1e-12 * 1654.8 * kVp);
+}
+
+// The paper's method 2 is not conservative when particles of a cell move differently; its
+// imbalance by hand on two_cell_bed. The gas side is eq. 33-35: cell 0's solids move at v_sm =
+// (0, 0.2, 0), slip 0.8, beta = 0.25 * (144 + 672) = 204, sink 8 V_p * 204 * 0.8 = 1305.6 V_p;
+// cell 1: v_sm = (0, 0.6, 0), beta = 0.25 * 564 = 141, sink 4 V_p * 141 * (0.3, 0.4) =
+// (169.2, 225.6) V_p, its particle's drag. Imbalance = particles' drag - sink = (0, 984 + 388.8
+// - 1305.6, 0) V_p = (0, 67.2, 0) V_p = (0, 5.497787e-7, 0) N (the viscous parts cancel: 840 *
+// (1^2 + 0.6^2 - 2 * 0.8^2) = 840 * 0.08 = 67.2), 4.06 % of the drag magnitude sum.
+TEST(Transfer, PaperPerParticleImbalanceOfTwoCellsByHand) {
+  const Bed b = two_cell_bed();
+  const TransferResult r =
+      run(b, map3d(b), TransferMethod::PerParticle, nullptr, drag::Polydispersity::OwnDiameter, drag::Law::ErgunWenYu);
+  expect_two_cell_particle_drag(r);
+  EXPECT_NEAR(r.cell_exchange_coefficient[0], 204.0, 1e-12 * 204.0);
+  EXPECT_NEAR(r.cell_exchange_coefficient[1], 141.0, 1e-12 * 141.0);
+  const double solid_velocity[6] = {0.0, 0.2, 0.0, 0.0, 0.6, 0.0};
+  for (int k = 0; k < 6; ++k) EXPECT_NEAR(r.cell_solid_velocity[k], solid_velocity[k], 1e-14) << k;
+  EXPECT_NEAR(r.momentum_imbalance[0], 0.0, 1e-14 * r.drag_magnitude_sum);
+  EXPECT_NEAR(r.momentum_imbalance[1], 67.2 * kVp, 1e-12 * 67.2 * kVp);
+  EXPECT_NEAR(r.momentum_imbalance[2], 0.0, 1e-14 * r.drag_magnitude_sum);
+  EXPECT_NEAR(relative_imbalance(r), 67.2 / 1654.8, 1e-12);
+}
+
+// The conservative method on two_cell_bed: each cell's gas sink V_c K_c (u_c - U_s,c) equals
+// its particles' drag by hand, (0, 984 + 388.8, 0) V_p = (0, 1372.8, 0) V_p in cell 0 and
+// (169.2, 225.6, 0) V_p in cell 1, so the imbalance is zero to round-off. K_c = sum_i V_i
+// beta_i/eps_s,i / V_c: cell 0 (984 + 648) V_p / 8 V_p = 204, cell 1 564 / 4 = 141 kg/m^3/s;
+// U_s,c = u_c - drag / (V_c K_c): cell 0 1 - 1372.8 / 1632 = 0.1588235 (2.7/17), cell 1
+// (0.3, 1) - (169.2, 225.6) / 564 = (0, 0.6) m/s, the particle's velocity.
+TEST(Transfer, ConservativeGasSinkPerCellOfTwoCellsByHand) {
+  const Bed b = two_cell_bed();
+  const TransferResult r = run(b, map3d(b), TransferMethod::PerParticleConservative, nullptr,
+                               drag::Polydispersity::OwnDiameter, drag::Law::ErgunWenYu);
+  expect_two_cell_particle_drag(r);
+  EXPECT_NEAR(r.cell_exchange_coefficient[0], 204.0, 1e-12 * 204.0);
+  EXPECT_NEAR(r.cell_exchange_coefficient[1], 141.0, 1e-12 * 141.0);
+  const double solid_velocity[6] = {0.0, 2.7 / 17.0, 0.0, 0.0, 0.6, 0.0};
+  for (int k = 0; k < 6; ++k) EXPECT_NEAR(r.cell_solid_velocity[k], solid_velocity[k], 1e-14) << k;
+  const double sink[6] = {0.0, 1372.8 * kVp, 0.0, 169.2 * kVp, 225.6 * kVp, 0.0};
+  for (int c = 0; c < 2; ++c)
+    for (int a = 0; a < 3; ++a)
+      EXPECT_NEAR(b.cell_volume[c] * r.cell_exchange_coefficient[c] *
+                      (b.cell_velocity[3 * c + a] - r.cell_solid_velocity[3 * c + a]),
+                  sink[3 * c + a], 1e-12 * 1372.8 * kVp)
+          << "cell " << c << " component " << a;
+  for (int a = 0; a < 3; ++a) EXPECT_NEAR(r.momentum_imbalance[a], 0.0, 1e-14 * r.drag_magnitude_sum) << a;
 }
 
 // Averaged gas side: K_c = beta(eps_c, Sauter d, |u_c - v_sm|), U_s = v_sm of eq. 35.
