@@ -90,10 +90,11 @@ void gas_findings(SceneReport &r) {
 }
 
 // Which particle engine fits, from the two engines' measured runs (bench/README.md, "Two
-// particle engines"): on seed 000's uniform bed (U = 1.5 U_mf, bubbling throughout) the
-// hard spheres agreed with LIGGGHTS within noise at 3.9x less processor time; where spheres
-// stay in enduring contact (the jet bed's dead zones; Goldschmidt's bed at 1.0 U_mf of its
-// large spheres) event-driven collisions chatter and cost as much or far more.
+// particle engines"), U / U_mf of the smallest spheres: seed 000's uniform bed (1.5 U_mf,
+// bubbling throughout) agreed with LIGGGHTS within noise at 5x less processor time, and
+// Goldschmidt's bidisperse bed (1.55 U_mf) cost 10x less once bubbling; Bokkers' single-bubble
+// bed at 0.99 U_mf, its spheres in enduring contact, cost 15x more (event-driven collisions
+// chatter there, a million per sphere per second).
 constexpr double kBubblingThroughout = 1.5;  // U / U_mf of the measured uniform bed
 
 void engine_findings(const Scene &s, SceneReport &r) {
@@ -101,12 +102,13 @@ void engine_findings(const Scene &s, SceneReport &r) {
   if (ratio >= kBubblingThroughout)
     add(r, Finding::Level::Advice, "particle engine",
         "U = " + num(ratio) + " U_mf: a bed bubbling throughout; the hard-sphere engine (dem.engine: hard_sphere) "
-        "ran seed 000's uniform bed (1.5 U_mf) within noise of LIGGGHTS at 3.9x less processor time "
-        "(bench/README.md, 'Two particle engines'), but no faster beside a jet's dead zones");
+        "ran seed 000's uniform bed (1.5 U_mf) within noise of LIGGGHTS at 5x less processor time and "
+        "Goldschmidt's bidisperse bed (1.55 U_mf) at 10x less (bench/README.md, 'Two particle engines')");
   else
     add(r, Finding::Level::Ok, "particle engine",
         "U = " + num(ratio) + " U_mf: near minimum fluidization spheres stay in enduring contact, which soft "
-        "spheres (LIGGGHTS) carry at a fixed cost per step and event-driven hard spheres by ever more collisions");
+        "spheres (LIGGGHTS) carry at a fixed cost per step and event-driven hard spheres by ever more collisions "
+        "(the single-bubble bed at 0.99 U_mf: 15x the processor time)");
 }
 
 }  // namespace
