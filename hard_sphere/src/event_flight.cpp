@@ -225,6 +225,10 @@ void EventFlight::build_lists(double now) {
     largest = std::max(largest, radius[i]);
   }
   lists_built_ = true;
+  if (n == 0) {  // a bed emptied through its outlets: no lists, no cells
+    degree_.clear();
+    return;
+  }
   skin_ = kSkinDiameters * 2 * largest;
   // cells at least as wide as the farthest reach of a listed pair's anchors
   const double reach = 2 * largest + skin_;

@@ -18,7 +18,11 @@ LIGGGHTS runs are verified on, with the same expected values and tolerances:
    5-20 s), and it fluctuates (standard deviation above 50 Pa: bubbles; 140-150 Pa measured
    with either engine); the mean particle height rises above the packing's; every particle and
    its mass kept; no inelastic collapse (the run ends).
-4. Restart: 200 spheres blown about in a column (tests/cases/blowout's mesh) run 0.1 s
+4. Outlet: 200 spheres blown out of a column (tests/cases/blowout, its top the outlet) for
+   0.1 s: they leave (all of them by 0.05 s: the emptied bed goes on to the end), the spheres
+   at the start = those in the column + those that left, and their mass to 1e-12
+   (test_blowout's counts for LIGGGHTS).
+5. Restart: 200 spheres blown about in a column (tests/cases/blowout's mesh) run 0.1 s
    straight, and 0.05 s then resumed to 0.1 s: the fields and the engine's restart file at
    0.1 s byte for byte the same; particles and mass accounted for.
 """
@@ -31,7 +35,7 @@ from tfdem import SOURCE_DIR, TUTORIALS
 from tfdem.case import Case, read_data_file
 from tfdem.engines import convert_to_hard_sphere, use_hard_sphere, write_data_file
 from tfdem.fixed_bed import VELOCITIES, FixedBed
-from tfdem.outputs import particle_statistics, probes, vtk_particles
+from tfdem.outputs import joined_series, particle_statistics, probes, vtk_particles
 from tfdem.physics import SettlingSphere
 from tfdem_testlib import Checks, copy_case, run, scratch
 
@@ -131,16 +135,36 @@ def bubbling(checks):
                 f"({collisions.group(0) if collisions else 'no report'})")
 
 
-def blowout_bed(name):
-    """tests/cases/blowout's column with 200 spheres of 2.5 mm at 50 kg/m^3 in 5 m/s of gas."""
+def blowout_bed(name, outlets=False):
+    """tests/cases/blowout's column with 200 spheres of 2.5 mm at 50 kg/m^3 in 5 m/s of gas;
+    its top an outlet (coupling.yaml dem.outlets) or a wall."""
     case = Case(copy_case(BLOWOUT, name))
     positions = [(0.003 + 0.0034 * (k % 10), 0.003 + 0.0034 * (k // 10), 0.00125) for k in range(200)]
     write_data_file(case.file("bed.data"), (0, 0, 0), (0.04, 0.1, 0.0025), [0.0025] * 200, [50] * 200, positions)
     use_hard_sphere(case, "bed.data", **GLASS)
-    case.set_coupling("dem.outlets", [])
+    if not outlets:
+        case.set_coupling("dem.outlets", [])
     case.set_control(endTime=0.1, writeInterval=0.05, writePrecision=17, writeControl="runTime")
     run(["blockMesh"], case.path, "log.blockMesh")
     return case
+
+
+def outlet(checks):
+    case = blowout_bed("hard_sphere_outlet", outlets=True)
+    _, output = run(["tfdemFoam"], case.path, "log.tfdemFoam")
+    left = joined_series(case.path, "tfdemOutlets", "outlets.dat")
+    left_count = sum(int(values[1]) for _, values in left)
+    left_mass = sum(values[2] for _, values in left)
+    stats = particle_statistics(case.path)
+    in_bed = int(stats["particles"][-1])
+    checks.true("hard spheres, outlet: spheres left", left_count > 0, f"({left_count} left, {in_bed} in the column)")
+    checks.true("hard spheres, outlet: the run went on to 0.1 s (all may have left: an emptied bed goes on)",
+                os.path.isdir(case.file("0.1")))
+    checks.true("hard spheres, outlet: 200 at the start = in the column + left", in_bed + left_count == 200,
+                f"({in_bed} + {left_count})")
+    checks.close("hard spheres, outlet: mass at the start = in the column + left", stats["mass"][-1] + left_mass,
+                 200 * 50 * math.pi * 0.0025 ** 3 / 6, 1e-12)
+    checks.true("hard spheres, outlet: no particle lost", "were lost" not in output)
 
 
 def restart(checks):
@@ -169,6 +193,7 @@ def main():
     settling(checks)
     packed_bed(checks)
     bubbling(checks)
+    outlet(checks)
     restart(checks)
     checks.finish()
 
