@@ -202,36 +202,36 @@ TEST(Transfer, ConservativeGasSinkPerCellOfTwoCellsByHand) {
   for (int a = 0; a < 3; ++a) EXPECT_NEAR(r.momentum_imbalance[a], 0.0, 1e-14 * r.drag_magnitude_sum) << a;
 }
 
-// Averaged gas side: K_c = beta(eps_c, Sauter d, |u_c - v_sm|), U_s = v_sm of eq. 35.
-TEST(Transfer, AveragedGasSideUsesEquation35MeanVelocity) {
+// V of a 2 mm sphere: pi/6 * 8e-9 = 4.18879020478639e-9 m^3.
+constexpr double kV2mm = 4.18879020478639e-9;
+
+// The averaged method (seed 000 eq. 33-35, Ergun of eq. 30) on one cell by hand: a 2 mm
+// particle moving at (-0.4, 0.4, 0) m/s and a 4 mm one (8 V_2mm) at (0.5, 1.3, 0) m/s under gas
+// at (1, 2, 0) m/s, the cell's volume 22.5 V_2mm for eps_g = 1 - 9 / 22.5 = 0.6. Eq. 35: v_sm =
+// ((-0.4, 0.4) + 8 (0.5, 1.3)) / 9 = (3.6, 10.8) / 9 = (0.4, 1.2) m/s (the number mean would be
+// (0.05, 0.85)), slip (0.6, 0.8), |s| = 1 m/s; Sauter mean <d> = (8 + 64) / (4 + 16) mm = 3.6 mm.
+// Ergun: beta/eps_s = 150 * 0.4 * 1.8e-5 / (0.6 * 1.296e-5) + 1.75 * 1.2 * 1 / 3.6e-3 =
+// 138.8889 + 583.3333 = 722.22222 kg/m^3/s, so K_c = beta = 0.4 * 722.2222 = 288.88889. The
+// cell's drag V_c K_c (0.6, 0.8) is shared by volume, V_i / (9 V_2mm) * 22.5 V_2mm * 288.8889 =
+// 722.2222 V_i per unit slip: (433.33333, 577.77778) V_2mm and (3466.6667, 4622.2222) V_2mm.
+TEST(Transfer, AveragedDragOfABinaryCellByHand) {
   Bed b;
   b.grid.origin = {0, 0, 0};
   b.grid.spacing = {0.01, 0.01, 0.01};
   b.grid.count = {1, 1, 1};
   b.position = {0.003, 0.003, 0.005, 0.007, 0.007, 0.005};
-  b.velocity = {0.1, 0.0, 0.0, -0.2, 0.3, 0.0};
+  b.velocity = {-0.4, 0.4, 0.0, 0.5, 1.3, 0.0};
   b.diameter = {0.002, 0.004};
   b.density = {2500.0, 2500.0};
   b.cell_velocity = {1.0, 2.0, 0.0};
-  b.cell_volume = {1e-6};
-  const Mapped m = map(b, VoidFractionMethod::Centroid);
-  const TransferResult r = run(b, m, TransferMethod::Averaged);
-  const double v1 = sphere_volume(0.002), v2 = sphere_volume(0.004);
-  const double vx = (v1 * 0.1 - v2 * 0.2) / (v1 + v2), vy = v2 * 0.3 / (v1 + v2);
-  EXPECT_NEAR(r.cell_solid_velocity[0], vx, 1e-15);
-  EXPECT_NEAR(r.cell_solid_velocity[1], vy, 1e-15);
-  const double eps = 1.0 - (v1 + v2) / 1e-6;
-  const double sauter = (8e-9 + 64e-9) / (4e-6 + 16e-6);
-  const double slip = std::hypot(1.0 - vx, 2.0 - vy);
-  // Beetstra et al. (2007) written out in their normalisation: beta = 18 mu eps eps_s F / d^2
-  const double es = 1.0 - eps, re = eps * kAir.density * slip * sauter / kAir.viscosity;
-  const double f = 10.0 * es / (eps * eps) + eps * eps * (1.0 + 1.5 * std::sqrt(es)) +
-                   0.413 * re / (24.0 * eps * eps) * (1.0 / eps + 3.0 * eps * es + 8.4 * std::pow(re, -0.343)) /
-                       (1.0 + std::pow(10.0, 3.0 * es) * std::pow(re, -(1.0 + 4.0 * es) / 2.0));
-  const double beetstra = 18.0 * kAir.viscosity * eps * es * f / (sauter * sauter);
-  EXPECT_NEAR(r.cell_exchange_coefficient[0], beetstra, 1e-12 * beetstra);
-  // each particle gets the same drag per unit volume
-  EXPECT_NEAR(r.particle_drag[0] / v1, r.particle_drag[3] / v2, 1e-9 * std::abs(r.particle_drag[3] / v2));
+  b.cell_volume = {22.5 * kV2mm};
+  const TransferResult r =
+      run(b, map3d(b), TransferMethod::Averaged, nullptr, drag::Polydispersity::OwnDiameter, drag::Law::ErgunWenYu);
+  const double solid_velocity[3] = {0.4, 1.2, 0.0};
+  for (int a = 0; a < 3; ++a) EXPECT_NEAR(r.cell_solid_velocity[a], solid_velocity[a], 1e-14) << a;
+  EXPECT_NEAR(r.cell_exchange_coefficient[0], 288.88889, 1e-6 * 288.88889);
+  const double expected[6] = {433.33333 * kV2mm, 577.77778 * kV2mm, 0.0, 3466.6667 * kV2mm, 4622.2222 * kV2mm, 0.0};
+  for (int k = 0; k < 6; ++k) EXPECT_NEAR(r.particle_drag[k], expected[k], 1e-6 * 433.33333 * kV2mm) << k;
 }
 
 // Eq. 28: the fluid force adds -V_p grad p to the drag.
@@ -248,9 +248,18 @@ TEST(Transfer, FluidForceAddsPressureGradientForce) {
   }
 }
 
-// A lone particle (eps -> 1) in still gas with the paper's law: eq. 29 with C_D of eq. 31,
-// f = V_p (3/4) C_D eps_g rho |u - v| / d eps_g^-2.7 (u - v).
-TEST(Transfer, LoneParticleDragFollowsEquation29) {
+// V_p of a 3 mm sphere: pi/6 * 2.7e-8 = 1.41371669411541e-8 m^3.
+constexpr double kV3mm = 1.41371669411541e-8;
+
+// A lone 3 mm particle falling at 0.5 m/s through still gas in a cell of 100 V_p (eps_g = 0.99,
+// Wen-Yu's branch of seed 000 eq. 30), its drag of eq. 29 by hand: Re = 0.99 * 1.2 * 0.5 * 3e-3
+// / 1.8e-5 = 99, 99^0.687 = exp(0.687 * 4.595120) = 23.49640, eq. 31: C_D = 24 (1 + 0.15 *
+// 23.49640) / 99 = 24 * 4.524460 / 99 = 1.096839; 3/4 C_D eps_g rho |s| / d = 148.5 * 1.096839 =
+// 162.8806, eps_g^-2.7 = exp(2.7 * 0.01005034) = 1.027507, beta/eps_s = 162.8806 * 1.027507 =
+// 167.36100 kg/m^3/s; drag V_p * 167.3610 * 0.5 = 83.680501 V_p = 1.183005e-6 N upward. The gas
+// side (eq. 33 with the cell's one particle, v_sm = v) has K_c = eps_s beta/eps_s = 0.01 *
+// 167.3610 = 1.6736100 kg/m^3/s.
+TEST(Transfer, LoneParticleWenYuDragByHand) {
   Bed b;
   b.grid.origin = {0, 0, 0};
   b.grid.spacing = {0.1, 0.1, 0.1};
@@ -260,21 +269,13 @@ TEST(Transfer, LoneParticleDragFollowsEquation29) {
   b.diameter = {0.003};
   b.density = {2500.0};
   b.cell_velocity = {0.0, 0.0, 0.0};
-  b.cell_volume = {1e-3};
-  const Mapped m = map(b, VoidFractionMethod::Centroid);
-  const CellGas cells{1, b.cell_velocity.data(), m.fraction.void_fraction.data(), b.cell_volume.data()};
-  const GasAtParticles at{m.gas_velocity_at_particles.data(), m.gas_fraction_at_particles.data(), nullptr, nullptr};
-  TransferOptions o;
-  o.method = TransferMethod::PerParticle;
-  o.law = drag::Law::ErgunWenYu;
-  o.gas = kAir;
-  const TransferResult r = transfer(m.weights, b.view(), cells, at, o);
-  const double eps = 1.0 - sphere_volume(0.003) / 1e-3;
-  const double re = eps * 1.2 * 0.5 * 0.003 / 1.8e-5;
-  const double cd = 24.0 * (1.0 + 0.15 * std::pow(re, 0.687)) / re;
-  const double expected = sphere_volume(0.003) * 0.75 * cd * eps * 1.2 * 0.5 / 0.003 * std::pow(eps, -2.7) * 0.5;
-  EXPECT_NEAR(r.particle_drag[1], expected, 1e-12 * expected);
+  b.cell_volume = {100.0 * kV3mm};
+  const TransferResult r = run(b, map3d(b), TransferMethod::PerParticle, nullptr, drag::Polydispersity::OwnDiameter,
+                               drag::Law::ErgunWenYu);
+  EXPECT_NEAR(r.particle_drag[1], 83.680501 * kV3mm, 1e-6 * 83.680501 * kV3mm);
   EXPECT_EQ(r.particle_drag[0], 0.0);
+  EXPECT_EQ(r.particle_drag[2], 0.0);
+  EXPECT_NEAR(r.cell_exchange_coefficient[0], 1.6736100, 1e-6 * 1.6736100);
 }
 
 // Beetstra et al.'s (2007) polydisperse drag reduces to the monodisperse law for equal sizes.
@@ -291,9 +292,21 @@ TEST(Transfer, PolydisperseDragReducesToMonodisperseForEqualSizes) {
   }
 }
 
-// A binary cell by hand: one 1.5 mm and one 2.5 mm particle at rest in a 3.5 mm cube, gas at
-// 1.2 m/s upward, Ergun (dense branch, seed 000 eq. 30) at the Sauter mean <d>, times
-// (eps y + eps_s y^2 + 0.064 eps y^3) / ((1 + 0.064 eps) y^2), y = d/<d> (Beetstra et al. 2007).
+// V of a 1 mm sphere: pi/6 * 1e-9 = 5.23598775598299e-10 m^3.
+constexpr double kV1mm = 5.23598775598299e-10;
+
+// A binary cell by hand (Beetstra et al. 2007, drag.h): a 1 mm and a 2 mm particle (V_1mm and
+// 8 V_1mm) at rest under gas at 1.2 m/s upward, the cell's volume 30 V_1mm for eps_g = 1 - 9 /
+// 30 = 0.7 (Ergun's branch, seed 000 eq. 30). Ergun at the Sauter mean <d> = (1 + 8) / (1 + 4)
+// mm = 1.8 mm: beta/eps_s = 150 * 0.3 * 1.8e-5 / (0.7 * 3.24e-6) + 1.75 * 1.2 * 1.2 / 1.8e-3 =
+// 357.1429 + 1400 = 1757.143 kg/m^3/s, times (eps y + eps_s y^2 + 0.064 eps y^3) / ((1 + 0.064
+// eps) y^2) at y = d/<d>: y = 5/9, (0.3888889 + 0.09259259 + 0.007681756) / (1.0448 *
+// 0.3086420) = 0.4891632 / 0.3224691 = 1.516930; y = 10/9, (0.7777778 + 0.3703704 + 0.06145405)
+// / (1.0448 * 1.234568) = 1.209602 / 1.289877 = 0.9377659. Drag 1757.143 * 1.516930 * 1.2 =
+// 3198.5561 V_1mm and 8 * 1757.143 * 0.9377659 * 1.2 = 15818.771 V_1mm upward, with either
+// per-particle method. Conservative gas side: K_c = 1757.143 * (1.516930 + 8 * 0.9377659) / 30
+// = 1757.143 * 9.019057 / 30 = 528.25907 kg/m^3/s, U_s = 1.2 - (3198.556 + 15818.77) / (30 *
+// 528.2591) = 0 m/s, sink 30 V_1mm * 528.2591 * 1.2 = 19017.327 V_1mm, the two drags' sum.
 TEST(Transfer, PolydisperseDragOfABinaryCellByHand) {
   Bed b;
   b.grid.origin = {0, 0, 0};
@@ -301,31 +314,23 @@ TEST(Transfer, PolydisperseDragOfABinaryCellByHand) {
   b.grid.count = {1, 1, 1};
   b.position = {0.001, 0.001, 0.001, 0.0022, 0.0022, 0.0022};
   b.velocity = {0, 0, 0, 0, 0, 0};
-  b.diameter = {0.0015, 0.0025};
+  b.diameter = {0.001, 0.002};
   b.density = {2500.0, 2500.0};
   b.cell_velocity = {0.0, 1.2, 0.0};
-  b.cell_volume = {0.0035 * 0.0035 * 0.0035};
+  b.cell_volume = {30.0 * kV1mm};
   const Mapped m = map3d(b);
-  const double pi = std::acos(-1.0);
-  const double v1 = pi / 6 * 3.375e-9, v2 = pi / 6 * 15.625e-9;
-  const double eps = 1.0 - (v1 + v2) / 4.2875e-8, es = 1.0 - eps;
-  ASSERT_LT(eps, 0.8);  // Ergun's branch
-  const double sauter = (3.375e-9 + 15.625e-9) / (2.25e-6 + 6.25e-6);
-  const double ergun = 150.0 * es * 1.8e-5 / (eps * sauter * sauter) + 1.75 * 1.2 * 1.2 / sauter;  // beta/eps_s
-  const double y1 = 0.0015 / sauter, y2 = 0.0025 / sauter;
-  const double f1 = (eps * y1 + es * y1 * y1 + 0.064 * eps * y1 * y1 * y1) / ((1 + 0.064 * eps) * y1 * y1);
-  const double f2 = (eps * y2 + es * y2 * y2 + 0.064 * eps * y2 * y2 * y2) / ((1 + 0.064 * eps) * y2 * y2);
   for (auto method : {TransferMethod::PerParticle, TransferMethod::PerParticleConservative}) {
     const TransferResult r = run(b, m, method, nullptr, drag::Polydispersity::Beetstra2007, drag::Law::ErgunWenYu);
-    EXPECT_NEAR(r.particle_drag[1], v1 * ergun * f1 * 1.2, 1e-12 * v1 * ergun * f1 * 1.2);
-    EXPECT_NEAR(r.particle_drag[4], v2 * ergun * f2 * 1.2, 1e-12 * v2 * ergun * f2 * 1.2);
+    EXPECT_NEAR(r.particle_drag[1], 3198.5561 * kV1mm, 1e-6 * 3198.5561 * kV1mm);
+    EXPECT_NEAR(r.particle_drag[4], 15818.771 * kV1mm, 1e-6 * 15818.771 * kV1mm);
     EXPECT_EQ(r.particle_drag[0], 0.0);
   }
-  // The conservative gas sink is minus the sum of these two drags.
   const TransferResult r = run(b, m, TransferMethod::PerParticleConservative, nullptr,
                                drag::Polydispersity::Beetstra2007, drag::Law::ErgunWenYu);
+  EXPECT_NEAR(r.cell_exchange_coefficient[0], 528.25907, 1e-6 * 528.25907);
+  EXPECT_NEAR(r.cell_solid_velocity[1], 0.0, 1e-14);
   const double sink = b.cell_volume[0] * r.cell_exchange_coefficient[0] * (1.2 - r.cell_solid_velocity[1]);
-  EXPECT_NEAR(sink, (v1 * f1 + v2 * f2) * ergun * 1.2, 1e-12 * sink);
+  EXPECT_NEAR(sink, 19017.327 * kV1mm, 1e-6 * 19017.327 * kV1mm);
 }
 
 // Newton's third law for a mixture under polydisperse drag with every mapping method.
