@@ -97,6 +97,82 @@ fix floor all wall/gran model hooke/stiffness tangential history primitive type 
     check("a circular variable is named", "circular variable 'a'" in message, message)
 
 
+def check_contact_definitions(root):
+    """tfdem.contacts on hand-made configurations: three touching spheres in a line (N_c 1, 2, 1)
+    beside an isolated touching pair; a pair at a surface gap of 0.7 % of d (a contact at 1 %,
+    not at 0.5 % or 0); a sphere overlapping a wall (a neighbour only with walls) and one 0.7 %
+    of d from a wall; the walls of a LIGGGHTS input (the top open); a static cell left out; the
+    numpy binning agreeing with the k-d tree."""
+    from tfdem import contacts
+    d, r = 0.004, 0.002
+    # a line of three, 0.999 d apart (overlapping), and an overlapping pair 10 d away
+    p = numpy.array([[0.1, 0.1, r], [0.1 + 0.999 * d, 0.1, r], [0.1 + 1.998 * d, 0.1, r],
+                     [0.3, 0.1, r], [0.3 + 0.999 * d, 0.1, r]])
+    radii = numpy.full(len(p), r)
+    pairs = contacts.contact_pairs(p, radii, 0.0)
+    nc = contacts.coordination(len(p), pairs)
+    check("contacts: a line of three and a pair give N_c 1 2 1 1 1",
+          pairs.tolist() == [[0, 1], [1, 2], [3, 4]] and nc.tolist() == [1, 2, 1, 1, 1], f"{pairs.tolist()} {nc.tolist()}")
+    line = numpy.array([True, True, True, False, False])
+    check("contacts: the line alone: bulk 4/3, multicontact (caption) 1/3, N_c >= 2 among all 1/3",
+          abs(contacts.bulk_coordination(nc, line) - 4 / 3) < 1e-12
+          and abs(contacts.multicontact_ratio(nc, line) - 1 / 3) < 1e-12
+          and abs(contacts.multicontact_fraction(nc, line) - 1 / 3) < 1e-12)
+    check("contacts: all five: bulk 6/5, caption ratio 1/5, N_c >= 2 among all 1/5, collisions 2/3",
+          abs(contacts.bulk_coordination(nc) - 6 / 5) < 1e-12 and abs(contacts.multicontact_ratio(nc) - 1 / 5) < 1e-12
+          and abs(contacts.multicontact_fraction(nc) - 1 / 5) < 1e-12
+          and abs(contacts.multicontact_collision_ratio(nc, pairs) - 2 / 3) < 1e-12)
+    # a pair whose surfaces are 0.7 % of d apart
+    q = numpy.array([[0.05, 0.2, r], [0.05 + 1.007 * d, 0.2, r]])
+    counts = [len(contacts.contact_pairs(q, numpy.full(2, r), g)) for g in (0.0, 0.005, 0.01)]
+    check("contacts: a gap of 0.7 % of d is a contact at 1 %, not at 0.5 % or 0", counts == [0, 0, 1], str(counts))
+    # walls: x = 0 and x = 0.15, y = 0; no top wall. Particle 0 overlaps x = 0, particle 1 is
+    # 0.7 % of d from y = 0, particle 2 is free
+    script = os.path.join(root, "in.walls")
+    write(script, """read_data bed.data
+fix wall_x0 all wall/gran model hooke/stiffness tangential history primitive type 2 xplane 0 absolute_damping on
+fix wall_x1 all wall/gran model hooke/stiffness tangential history primitive type 2 xplane 0.15 absolute_damping on
+fix wall_y0 all wall/gran model hooke/stiffness tangential history primitive type 2 yplane 0 absolute_damping on
+# fix wall_y1 all wall/gran model hooke/stiffness tangential history primitive type 2 yplane 0.9
+""")
+    walls = contacts.walls_of_script(script)
+    check("contacts: the walls of an input (a commented-out top is not a wall)",
+          walls == [(0, 0.0), (0, 0.15), (1, 0.0)] and contacts.data_file_of_script(script) == "bed.data", str(walls))
+    w = numpy.array([[0.999 * r, 0.3, r], [0.07, r + 0.007 * d, r], [0.07, 0.3, r]])
+    wr = numpy.full(3, r)
+    at = {g: contacts.wall_contacts(w, wr, walls, g).tolist() for g in (0.0, 0.005, 0.01)}
+    none = contacts.coordination(3, contacts.contact_pairs(w, wr, 0.0))
+    with_walls = contacts.coordination(3, contacts.contact_pairs(w, wr, 0.0), contacts.wall_contacts(w, wr, walls, 0.0))
+    check("contacts: a sphere overlapping a wall counts it only with walls; 0.7 % of d from a wall only at 1 %",
+          none.tolist() == [0, 0, 0] and with_walls.tolist() == [1, 0, 0]
+          and at == {0.0: [[0, 0]], 0.005: [[0, 0]], 0.01: [[0, 0], [1, 2]]}, f"{with_walls.tolist()} {at}")
+    check("contacts: a wall contact is a binary collision when the particle has no other neighbour",
+          contacts.multicontact_collision_ratio(with_walls, numpy.zeros((0, 2), dtype=int),
+                                                contacts.wall_contacts(w, wr, walls, 0.0)) == 0.0)
+    # two 1 cm cells: the left one's particles creep at 1 mm/s (static below 4 mm/s), the right's move
+    s = numpy.array([[0.002, 0.002, r], [0.006, 0.002, r], [0.012, 0.002, r], [0.016, 0.002, r]])
+    v = numpy.array([[0.001, 0, 0], [0, -0.001, 0], [0.05, 0, 0], [0, 0.001, 0]])
+    static = contacts.static_mask(s, v, (0, 0, 0), (0.01, 0.01, 0.004), (2, 1, 1), 0.004)
+    nc = numpy.array([2, 2, 0, 1])
+    check("contacts: a static cell is masked out (bulk N_c of the rest 0.5, caption ratio 0)",
+          static.tolist() == [True, True, False, False] and contacts.bulk_coordination(nc, ~static) == 0.5
+          and contacts.multicontact_ratio(nc, ~static) == 0.0, str(static.tolist()))
+    # the numpy binning (no scipy) finds the k-d tree's pairs in a random cloud
+    cloud = numpy.random.default_rng(3).uniform(0, 0.05, (600, 3)) * [1, 1, 0.1]
+    cr = numpy.full(600, r)
+    tree = contacts.contact_pairs(cloud, cr, 0.01)
+    saved = contacts.cKDTree
+    contacts.cKDTree = None
+    try:
+        binned = contacts.contact_pairs(cloud, cr, 0.01)
+    finally:
+        contacts.cKDTree = saved
+    brute = [[i, j] for i in range(600) for j in range(i + 1, 600)
+             if numpy.sum((cloud[i] - cloud[j]) ** 2) < (2 * r * 1.01) ** 2]
+    check("contacts: numpy binning and the k-d tree find the brute-force pairs",
+          binned.tolist() == brute and (saved is None or tree.tolist() == brute), f"{len(binned)} {len(tree)} {len(brute)}")
+
+
 def main():
     root = tempfile.mkdtemp()
     # A run to t = 0.3 killed and resumed from its checkpoint at 0.2: the first segment's rows
@@ -262,6 +338,7 @@ def main():
     check("batch driver refuses --end-time 0", code == 2, str(code))
 
     check_hard_sphere_laws(root)
+    check_contact_definitions(root)
 
     print(f"{'FAILED: ' + ', '.join(failures) if failures else 'all passed'}")
     sys.exit(1 if failures else 0)
