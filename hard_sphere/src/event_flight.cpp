@@ -324,9 +324,9 @@ void EventFlight::relax_tolerated() {
   for (auto it = tolerated_.begin(); it != tolerated_.end();) {
     const int i = static_cast<int>(it->first >> 32), j = static_cast<int>(it->first & 0xffffffffu);
     const double distance = norm(nearest(motion_[i].x - motion_[j].x)), sigma = radius[i] + radius[j];
-    const bool parted = distance >= sigma;
-    if (!parted) it->second = std::max(it->second, distance);
-    if (listed) {
+    const bool parted = distance >= sigma, grown = !parted && distance > it->second;
+    if (grown) it->second = distance;
+    if (listed && (parted || grown)) {  // the listed entries hold the old distance
       set_listed_contact(i, j, parted ? sigma : it->second);
       set_listed_contact(j, i, parted ? sigma : it->second);
     }

@@ -11,7 +11,6 @@ markdown table: each definition's mean over the realizations +- the standard err
 realizations' means, beside the paper's values. Run: . scripts/tfdem-env.sh;
 /usr/bin/python3 tutorials/seed000_study/contact_definitions.py (about a minute, one core)."""
 import json
-import math
 import os
 
 import numpy
@@ -19,6 +18,7 @@ import numpy
 from tfdem import contacts
 from tfdem.case import Case, read_data_box
 from tfdem.outputs import vtk_particles
+from tfdem.stats import ensemble
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 RUNS = os.path.join(HERE, "runs")
@@ -83,14 +83,6 @@ def run_values(bed, k):
                     values["mc_all"].append(contacts.multicontact_fraction(nc, mask))
                     values["mc_collisions"].append(contacts.multicontact_collision_ratio(nc, pairs, w, mask))
     return out, {n: float(numpy.mean(s)) for n, s in static_share.items()}, all(vtk_check)
-
-
-def ensemble(values):
-    values = [float(x) for x in values]
-    n = len(values)
-    mean = sum(values) / n
-    std = math.sqrt(sum((x - mean) ** 2 for x in values) / (n - 1)) if n > 1 else float("nan")
-    return {"mean": mean, "error": std / math.sqrt(n), "values": values}
 
 
 def mark(bed, metric, mean, frames_above=None):
