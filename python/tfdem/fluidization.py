@@ -430,6 +430,6 @@ def report(s, schedule):
     lines.append(f"U_mf (rising branch, same method) {s['u_mf_rising']:.3f} m/s:"
                  f" {pct(s['u_mf_rising'], s['wen_yu'])} on Wen-Yu")
     r1 = s["fixed_bed_check"]
-    lines.append(f"fixed bed at {r1['u']:.1f} m/s (falling): {r1['dp']:.1f} Pa vs Ergun {r1['ergun']:.1f} Pa"
+    lines.append(f"fixed bed at {r1['u']:g} m/s (falling): {r1['dp']:.1f} Pa vs Ergun {r1['ergun']:.1f} Pa"
                  f" at eps = {r1['eps']:.3f}, H = {100 * r1['height']:.2f} cm: {pct(r1['dp'], r1['ergun'])}")
     return lines

@@ -18,6 +18,7 @@ import re
 
 import yaml
 
+import tfdem.engines
 import tfdem.run
 from tfdem import TUTORIALS
 from tfdem.case import Case, CaseError
@@ -144,3 +145,46 @@ def pour(case, count, out="bed.data", ranks=1, runner=tfdem.run.run, **options):
         to_mid_plane(case.file(out), hi[2] - lo[2])
         return lines[-1] + f" (poured {PLANE_SLAB} diameters deep, centres moved onto the mid-plane)"
     return lines[-1]
+
+
+def script_type_count(case):
+    """The atom types the case's DEM script declares (its property/global kn peratomtypepair N)."""
+    case = case if isinstance(case, Case) else Case(case)
+    for words in case.dem().commands("fix"):
+        if len(words) > 6 and words[3] == "property/global" and words[4] == "kn" and words[5] == "peratomtypepair":
+            return int(words[6])
+    raise CaseError(f"{case.dem_script()}: no 'fix ... property/global kn peratomtypepair N': the number of atom "
+                    "types the packing must declare is not known")
+
+
+def pack_case(case, ranks=1, runner=tfdem.run.run):
+    """`tfdem pack`: pour the case's packing.yaml with the friction of its DEM script's particle
+    pairs, into the data file its script reads, with the atom types the script declares."""
+    case = case if isinstance(case, Case) else Case(case)
+    script = case.dem()
+    out = script.command("read_data")[1]
+    tables = tfdem.engines.contact_properties(script)
+    summary = pour(case, out=out, ranks=ranks, runner=runner, friction=tables["coefficientFriction"][0][0],
+                   **packing_settings(case))
+    set_atom_types(case.file(out), script_type_count(case))
+    return summary
+
+
+def main(argv=None):
+    import argparse
+    import sys
+    parser = argparse.ArgumentParser(prog="tfdem pack", description="Pour a case's bed (its packing.yaml) into "
+                                     "the data file its DEM script reads.")
+    parser.add_argument("case", nargs="?", default=".")
+    parser.add_argument("--ranks", type=int, default=1)
+    args = parser.parse_args(argv)
+    try:
+        print(pack_case(args.case, ranks=args.ranks))
+    except (CaseError, tfdem.run.RunError, tfdem.engines.ScriptError) as e:
+        print(f"tfdem pack: {e}", file=sys.stderr)
+        return 2
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -1,0 +1,818 @@
+"""A complete, runnable case from one short YAML of what a user knows about a bed
+(`tfdem new CASE --from bed.yaml`); everything else is derived and printed with the reason.
+
+    box:                       # the column, m: x across, y up (gravity -y), z the depth
+      width: 0.04
+      height: 0.12
+      depth: one_layer         # one particle diameter, seed 000's 2-D rule; or a depth in m
+    particles:                 # one density, one or two sizes
+      density: 2500            # kg/m^3
+      sizes:                   # each with `number`, or each with `mass_fraction` and `count`
+        - {diameter: 0.001, number: 800}
+      restitution: 0.9         # e_n of particle pairs
+      friction: 0.1            # Coulomb friction of particle pairs
+      wall: {restitution: 0.9, friction: 0.1}   # optional: the walls' (default: the pairs')
+      stiffness: 80            # optional k_n, N/m (default below)
+    gas: {density: 1.2, viscosity: 1.8e-5}
+    inflow:                    # superficial velocity through the bottom, m/s ...
+      velocity: 0.8
+      plate: {pressure_drop_fraction: 0.3}      # optional distributor plate
+      # ... or jets through an otherwise closed bottom (velocity: gas through the rest of it):
+      # jets: [{centre: 0.075, width: 0.01, velocity: 39}]
+    run: {end_time: 1.0, write_interval: 0.1}  # s; write_interval: checkpoints and particle files
+    coupling: {transfer: averaged, drag_law: ergun_wen_yu}   # optional, these are the defaults
+    mesh: {cell_size: 0.004}   # optional: the gas cells' size, m
+
+Derived (each rule stated in `derive`): the gas cells (four of the largest diameter, seed
+000's uniform bed; square), the contact stiffness (an impact at U_mf sinks 5 % of d), the
+damping of every pair of types from e_n (written into the DEM script as seed 001 eq. 27),
+the DEM step (the scene check's rule, `tfdem-scene-check`), the gas step and coupling
+interval, the lid, the plate's resistance, the probes, the packing. The formulas the
+generated files need are written into them, so a value edited there stays the only copy.
+"""
+import argparse
+import difflib
+import json
+import math
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+
+import yaml
+
+import tfdem.run
+from tfdem import SOURCE_DIR, TUTORIALS
+
+ONE_LAYER = "one_layer"
+CELL_DIAMETERS = 4.0          # gas cell / largest diameter: seed 000's uniform bed (1 cm, 2.5 mm)
+SMALLEST_CELL_DIAMETERS = 3.0  # below it the centroid void fraction is unsafe (scene check)
+IMPACT_OVERLAP = 0.05         # default k_n: an impact at U_mf sinks this fraction of d
+GAS_STEP = 5e-4               # s: the bubbling bed's measured front (bench/README.md, "Gas step")
+INFLOW_COURANT = 1.0          # the gas step keeps the inflow's U dt / dy at or below this
+PACKED_SOLID_FRACTION = 0.6   # of a poured bed, for the bed height estimate
+LID_OVER_BED = 2.0            # the column should be at least this many packed bed heights tall
+FIELDS_TEMPLATE = os.path.join(TUTORIALS, "bubbling_bed", "system")
+
+
+class BedError(Exception):
+    """bed.yaml is wrong; the message names the key, the value and the fix."""
+
+
+SCHEMA = {
+    "box": {"width": None, "height": None, "depth": None},
+    "particles": {"density": None, "sizes": None, "count": 0, "restitution": None, "friction": None,
+                  "wall": {}, "stiffness": 0.0},
+    "gas": {"density": 1.2, "viscosity": 1.8e-5},
+    "inflow": {"velocity": 0.0, "plate": {}, "jets": []},
+    "run": {"end_time": None, "write_interval": None},
+    "coupling": {"transfer": "averaged", "drag_law": "ergun_wen_yu"},
+    "mesh": {"cell_size": 0.0},
+}
+SIZE_KEYS = ("diameter", "number", "mass_fraction")
+WALL_KEYS = ("restitution", "friction")
+PLATE_KEYS = ("pressure_drop_fraction",)
+JET_KEYS = ("centre", "width", "velocity")
+
+
+def _fix_name(key, valid):
+    near = difflib.get_close_matches(key, valid, n=1)
+    return f" (did you mean '{near[0]}'?)" if near else f"; valid keys: {', '.join(valid)}"
+
+
+def _check_keys(path, where, given, valid):
+    if not isinstance(given, dict):
+        raise BedError(f"{path}: {where}: expected a mapping of {', '.join(valid)}, got {given!r}")
+    for key in given:
+        if key not in valid:
+            raise BedError(f"{path}: {where}.{key}: unknown key{_fix_name(key, list(valid))}")
+
+
+def _number(path, key, value, low=0.0, high=math.inf, low_open=True, high_open=False, what="a number"):
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise BedError(f"{path}: {key}: expected {what}, got {value!r}")
+    ok = (value > low if low_open else value >= low) and (value < high if high_open else value <= high)
+    if not ok:
+        lo, hi = ("(" if low_open else "["), (")" if high_open else "]")
+        raise BedError(f"{path}: {key}: {value!r} is outside {lo}{low:g}, {high:g}{hi} ({what})")
+    return float(value)
+
+
+def load_bed(path):
+    """bed.yaml read and checked, with every default filled in."""
+    try:
+        with open(path) as f:
+            given = yaml.safe_load(f) or {}
+    except OSError as e:
+        raise BedError(f"{path}: cannot read it ({e.strerror})")
+    except yaml.YAMLError as e:
+        raise BedError(f"{path}: not valid YAML ({e})")
+    _check_keys(path, "bed", given, SCHEMA)
+    bed = {}
+    for section, keys in SCHEMA.items():
+        values = given.get(section, {})
+        _check_keys(path, section, values, keys)
+        bed[section] = {}
+        for key, default in keys.items():
+            if key not in values and default is None:
+                raise BedError(f"{path}: {section}.{key}: missing (required; see `tfdem new --help`)")
+            bed[section][key] = values.get(key, default)
+    _check_box(path, bed)
+    _check_particles(path, bed)
+    _check_inflow(path, bed)
+    _check_run(path, bed)
+    return bed
+
+
+def _check_box(path, bed):
+    box = bed["box"]
+    for key in ("width", "height"):
+        box[key] = _number(path, f"box.{key}", box[key], what="a length in m")
+    if box["depth"] != ONE_LAYER:
+        box["depth"] = _number(path, "box.depth", box["depth"], what=f"a length in m or '{ONE_LAYER}'")
+
+
+def _check_particles(path, bed):
+    p = bed["particles"]
+    p["density"] = _number(path, "particles.density", p["density"], what="a density in kg/m^3")
+    sizes = p["sizes"]
+    if not isinstance(sizes, list) or not 1 <= len(sizes) <= 2:
+        raise BedError(f"{path}: particles.sizes: expected a list of one or two sizes (the pour makes mono- and "
+                       f"bidisperse beds), got {sizes!r}")
+    for i, size in enumerate(sizes):
+        _check_keys(path, f"particles.sizes[{i}]", size, SIZE_KEYS)
+        if "diameter" not in size:
+            raise BedError(f"{path}: particles.sizes[{i}].diameter: missing (m)")
+        size["diameter"] = _number(path, f"particles.sizes[{i}].diameter", size["diameter"], what="a diameter in m")
+    if len(sizes) == 2 and sizes[0]["diameter"] == sizes[1]["diameter"]:
+        raise BedError(f"{path}: particles.sizes: both sizes have diameter {sizes[0]['diameter']}; give one size")
+    sizes.sort(key=lambda s: s["diameter"])
+    by_number = [("number" in s) for s in sizes]
+    by_fraction = [("mass_fraction" in s) for s in sizes]
+    if all(by_number) and not any(by_fraction):
+        for i, s in enumerate(sizes):
+            s["number"] = int(_number(path, f"particles.sizes[{i}].number", s["number"], what="a particle count"))
+    elif all(by_fraction) and not any(by_number):
+        total = 0.0
+        for i, s in enumerate(sizes):
+            s["mass_fraction"] = _number(path, f"particles.sizes[{i}].mass_fraction", s["mass_fraction"],
+                                         high=1.0, what="a mass fraction in (0, 1]")
+            total += s["mass_fraction"]
+        if abs(total - 1.0) > 1e-9:
+            raise BedError(f"{path}: particles.sizes: the mass fractions sum to {total:g}, not 1")
+        if not p["count"]:
+            raise BedError(f"{path}: particles.count: missing (the number of particles, with the sizes' mass "
+                           "fractions)")
+        p["count"] = int(_number(path, "particles.count", p["count"], what="a particle count"))
+    else:
+        raise BedError(f"{path}: particles.sizes: give every size a `number`, or every size a `mass_fraction` "
+                       "and particles.count")
+    p["restitution"] = _number(path, "particles.restitution", p["restitution"], high=1.0,
+                               what="the normal restitution e_n in (0, 1]")
+    p["friction"] = _number(path, "particles.friction", p["friction"], low_open=False,
+                            what="a friction coefficient >= 0")
+    _check_keys(path, "particles.wall", p["wall"], WALL_KEYS)
+    wall = {"restitution": p["restitution"], "friction": p["friction"], **p["wall"]}
+    wall["restitution"] = _number(path, "particles.wall.restitution", wall["restitution"], high=1.0,
+                                  what="the normal restitution e_n in (0, 1]")
+    wall["friction"] = _number(path, "particles.wall.friction", wall["friction"], low_open=False,
+                               what="a friction coefficient >= 0")
+    p["wall"] = wall
+    if p["stiffness"]:
+        p["stiffness"] = _number(path, "particles.stiffness", p["stiffness"], what="k_n in N/m")
+    if p["restitution"] == 1.0 or wall["restitution"] == 1.0:
+        raise BedError(f"{path}: particles.restitution: e_n = 1 (no damping) never lets a bed come to rest in "
+                       "soft-sphere DEM; give the material's e_n (glass: ~0.9)")
+    for key in ("density", "viscosity"):
+        bed["gas"][key] = _number(path, f"gas.{key}", bed["gas"][key])
+
+
+def _check_inflow(path, bed):
+    inflow, box = bed["inflow"], bed["box"]
+    inflow["velocity"] = _number(path, "inflow.velocity", inflow["velocity"], low_open=False,
+                                 what="a superficial velocity in m/s")
+    _check_keys(path, "inflow.plate", inflow["plate"], PLATE_KEYS)
+    if inflow["plate"]:
+        inflow["plate"]["pressure_drop_fraction"] = _number(
+            path, "inflow.plate.pressure_drop_fraction", inflow["plate"].get("pressure_drop_fraction"),
+            high=10.0, what="the plate's pressure drop at U_mf over the bed's weight per area")
+    jets = inflow["jets"]
+    if not isinstance(jets, list):
+        raise BedError(f"{path}: inflow.jets: expected a list of jets, got {jets!r}")
+    for i, jet in enumerate(jets):
+        _check_keys(path, f"inflow.jets[{i}]", jet, JET_KEYS)
+        for key in JET_KEYS:
+            if key not in jet:
+                raise BedError(f"{path}: inflow.jets[{i}].{key}: missing")
+            jet[key] = _number(path, f"inflow.jets[{i}].{key}", jet[key], what="m or m/s")
+        if jet["centre"] - jet["width"] / 2 < -1e-12 or jet["centre"] + jet["width"] / 2 > box["width"] + 1e-12:
+            raise BedError(f"{path}: inflow.jets[{i}]: x = {jet['centre'] - jet['width'] / 2:g} to "
+                           f"{jet['centre'] + jet['width'] / 2:g} m reaches past the box (0 to {box['width']:g} m); "
+                           "move its centre or narrow it")
+    if jets and inflow["plate"]:
+        raise BedError(f"{path}: inflow.plate: a distributor plate with jets is not made; give one of them")
+    if not jets and inflow["velocity"] == 0.0:
+        raise BedError(f"{path}: inflow.velocity: missing or 0 with no jets: a bed needs gas through its bottom")
+
+
+def _check_run(path, bed):
+    r = bed["run"]
+    r["end_time"] = _number(path, "run.end_time", r["end_time"], what="a time in s")
+    r["write_interval"] = _number(path, "run.write_interval", r["write_interval"], high=r["end_time"],
+                                  what="a time in s, at most run.end_time")
+
+
+def _round_down(value):
+    """The largest of 1, 2, 2.5, 5 x 10^k not above value (a gas step that sampling intervals
+    such as 0.01 s hold a whole number of times)."""
+    power = 10.0 ** math.floor(math.log10(value))
+    return max(m * power for m in (1, 2, 2.5, 5) if m * power <= value * (1 + 1e-12))
+
+
+def _mass(d, rho):
+    return rho * math.pi * d ** 3 / 6
+
+
+def _reduced(a, b):
+    """(1/a + 1/b)^-1 (seed 001 eq. 16); b = inf for a wall."""
+    return a if math.isinf(b) else a * b / (a + b)
+
+
+def scene_numbers(bed, stiffness, wall_stiffness, cell, path="bed.yaml"):
+    """The scene check (tfdem-scene-check --json) of the smallest spheres' contacts: U_mf, t_c,
+    damping and the DEM step rule for the pair and the wall contact. The coupling section's
+    names (transfer, drag_law) are checked there, against the core's own lists."""
+    p = bed["particles"]
+    with tempfile.TemporaryDirectory() as scratch:
+        config = os.path.join(scratch, "coupling.yaml")
+        with open(config, "w") as f:
+            yaml.safe_dump({"gas": bed["gas"],
+                            "particles": {"diameter": [s["diameter"] for s in p["sizes"]] if len(p["sizes"]) > 1
+                                          else p["sizes"][0]["diameter"], "density": p["density"]},
+                            "dem": {"script": "in.bed", "coupling_interval": 1},
+                            "coupling": {"transfer": bed["coupling"]["transfer"],
+                                         "drag_law": bed["coupling"]["drag_law"]}}, f)
+        velocity = max([bed["inflow"]["velocity"]] + [j["velocity"] for j in bed["inflow"]["jets"]])
+        args = ["tfdem-scene-check", config, "--gas-velocity", repr(velocity), "--cell-size", repr(cell),
+                "--kn", repr(stiffness), "--en", repr(p["restitution"]), "--wall-kn", repr(wall_stiffness),
+                "--wall-en", repr(p["wall"]["restitution"]), "--json"]
+        done = subprocess.run(args, capture_output=True, text=True, env=tfdem.run.environment())
+    if done.returncode == 2 or not done.stdout.strip():
+        # the core names the key in the scratch coupling.yaml (with its line): name bed.yaml's
+        message = re.sub(re.escape(config) + r"(:\d+:\d+)?", path, done.stderr.strip().replace("tfdem-scene-check: ", ""))
+        raise BedError(message)
+    return json.loads(done.stdout)
+
+
+def _wen_yu(bed, d, path):
+    """U_mf of size d by Wen and Yu, from the scene check's own formula (one source)."""
+    one = {**bed, "particles": {**bed["particles"], "sizes": [{"diameter": d, "number": 1}]}}
+    return scene_numbers(one, 800.0, 800.0, CELL_DIAMETERS * d, path)["minimum_fluidization"]
+
+
+def derive(bed, path="bed.yaml"):
+    """Every value of the case, and a line per value saying what it is and why."""
+    box, p, inflow = bed["box"], bed["particles"], bed["inflow"]
+    d_small, d_large = p["sizes"][0]["diameter"], p["sizes"][-1]["diameter"]
+    out = {"notes": []}
+    note = out["notes"].append
+    if box["width"] < d_large:
+        raise BedError(f"{path}: box.width: {box['width']:g} m is narrower than a particle ({d_large:g} m)")
+    one_layer = box["depth"] == ONE_LAYER
+    depth = d_large if one_layer else box["depth"]
+    if not one_layer and depth < d_large:
+        raise BedError(f"{path}: box.depth: {depth:g} m is shallower than a particle ({d_large:g} m); "
+                       f"use '{ONE_LAYER}' for a bed one particle deep")
+    out["depth"], out["one_layer"] = depth, one_layer
+    if one_layer:
+        note(f"depth {depth:g} m: one diameter of the largest spheres (seed 000's 2-D rule), gas one cell deep")
+
+    cell = bed["mesh"]["cell_size"] or CELL_DIAMETERS * d_large
+    nx = max(1, int(math.floor(box["width"] / cell + 1e-9)))
+    dx = box["width"] / nx
+    if dx < SMALLEST_CELL_DIAMETERS * d_large:
+        raise BedError(f"{path}: box.width: {box['width']:g} m holds no gas cell of {SMALLEST_CELL_DIAMETERS:g} "
+                       f"diameters ({SMALLEST_CELL_DIAMETERS * d_large:g} m), the smallest the centroid void fraction "
+                       f"takes; widen the box (or mesh.cell_size below that needs another mapping)")
+    ny = max(1, int(round(box["height"] / dx)))
+    dy = box["height"] / ny
+    nz = 1 if one_layer or depth < 2 * dx else int(round(depth / dx))
+    out.update(nx=nx, ny=ny, nz=nz, dx=dx, dy=dy, dz=depth / nz)
+    why = "mesh.cell_size" if bed["mesh"]["cell_size"] else f"{CELL_DIAMETERS:g} of the largest diameter, seed 000's uniform bed"
+    note(f"gas cells {dx:.4g} x {dy:.4g} x {depth / nz:.4g} m ({nx} x {ny} x {nz}): {dx / d_large:.3g} d wide ({why}); "
+         f"{'one cell deep' if nz == 1 else 'cubic'}")
+
+    # jets on the cells' faces: a jet is a patch of whole faces
+    jets = []
+    for i, jet in enumerate(inflow["jets"]):
+        lo, hi = jet["centre"] - jet["width"] / 2, jet["centre"] + jet["width"] / 2
+        i0, i1 = lo / dx, hi / dx
+        if abs(i0 - round(i0)) > 1e-6 or abs(i1 - round(i1)) > 1e-6 or round(i1) <= round(i0):
+            suggestion = max(1, round(jet["width"] / dx)) * dx
+            raise BedError(f"{path}: inflow.jets[{i}]: its edges x = {lo:g} and {hi:g} m are not on the gas cells' "
+                           f"faces (cells {dx:g} m wide from x = 0): give a width of whole cells (e.g. {suggestion:g}) "
+                           f"and a centre half a width from a face, or set mesh.cell_size")
+        jets.append({"name": "jet" if i == 0 else f"jet_{i + 1}", "from": int(round(i0)), "to": int(round(i1)),
+                     "velocity": jet["velocity"]})
+    out["jets"] = jets
+
+    rho = p["density"]
+    u_mf = _wen_yu(bed, d_small, path)
+    out["u_mf"] = u_mf
+    m_small = _mass(d_small, rho)
+    stiffness = p["stiffness"] or _reduced(m_small, m_small) * (u_mf / (IMPACT_OVERLAP * d_small)) ** 2
+    if not p["stiffness"]:
+        note(f"k_n {stiffness:.4g} N/m: an impact at U_mf ({u_mf:.4g} m/s, Wen-Yu, smallest spheres) sinks "
+             f"{IMPACT_OVERLAP:.0%} of d (seed 000's uniform bed: 5.7 %)")
+    wall_stiffness = 2 * stiffness
+    note(f"wall k_n {wall_stiffness:.4g} N/m: twice the pairs', the same overlap and t_c for a wall's m_ab = m")
+    out["stiffness"], out["wall_stiffness"] = stiffness, wall_stiffness
+
+    scene = scene_numbers(bed, stiffness, wall_stiffness, dx, path)
+    pair, wall = scene["pair"], scene["wall"]
+    longest_dem_step = min(pair["recommended_time_step"], wall["recommended_time_step"])
+    velocities = [inflow["velocity"]] + [j["velocity"] for j in jets]
+    bound = min(GAS_STEP, INFLOW_COURANT * dy / max(velocities), 0.5 * scene["dense_drag_time"])
+    gas_step = _round_down(bound)
+    interval = max(1, int(math.ceil(gas_step / longest_dem_step - 1e-9)))
+    dt = gas_step / interval
+    out.update(dem_step=dt, coupling_interval=interval, gas_step=gas_step)
+    for key in ("end_time", "write_interval"):
+        steps = bed["run"][key] / gas_step
+        if abs(steps - round(steps)) > 1e-6 * steps:
+            raise BedError(f"{path}: run.{key}: {bed['run'][key]:g} s is not a whole number of gas steps of "
+                           f"{gas_step:g} s (derived, below); use {max(1, round(steps)) * gas_step:g}")
+    out["statistics_interval"] = max(1, round(min(0.01, bed["run"]["write_interval"]) / gas_step)) * gas_step
+    note(f"gas step {gas_step:g} s: a round value below {bound:.4g} s, the least of {GAS_STEP:g} s (the bubbling "
+         f"bed's measured front), the inflow's Courant number U dt/dy <= {INFLOW_COURANT:g} and half the packed "
+         f"bed's drag response time {scene['dense_drag_time']:.3g} s")
+    note(f"DEM step {dt:.4g} s = gas step / {interval}: at most t_c/{pair['steps_per_contact']:.3g} = "
+         f"{pair['recommended_time_step']:.4g} s with t_c = {pair['contact_time']:.4g} s (smallest pair, seed 000 "
+         f"eq. 26), the scene check's rule for e_n = {p['restitution']:g}; walls t_c/{wall['contact_time'] / dt:.3g}")
+
+    # the bed
+    if "number" in p["sizes"][0]:
+        numbers = [s["number"] for s in p["sizes"]]
+        volumes = [n * math.pi * s["diameter"] ** 3 / 6 for n, s in zip(numbers, p["sizes"])]
+        out["count"] = sum(numbers)
+        out["mass_fraction_small"] = volumes[0] / sum(volumes)
+    else:
+        out["count"] = p["count"]
+        out["mass_fraction_small"] = p["sizes"][0]["mass_fraction"]
+    fractions = [out["mass_fraction_small"], 1 - out["mass_fraction_small"]][:len(p["sizes"])]
+    mean_volume = 1 / sum(f / (math.pi * s["diameter"] ** 3 / 6) for f, s in zip(fractions, p["sizes"]))
+    solid_volume = out["count"] * mean_volume
+    out["bed_mass"] = rho * solid_volume
+    plate = bool(inflow["plate"])
+    floor = dy if plate else 0.0
+    out["floor"] = floor
+    bed_height = solid_volume / (PACKED_SOLID_FRACTION * box["width"] * depth)
+    out["bed_height"] = bed_height
+    note(f"bed {out['count']} spheres, {out['bed_mass'] * 1000:.4g} g, about {bed_height * 100:.3g} cm deep packed "
+         f"(solid fraction {PACKED_SOLID_FRACTION:g}){f', on a plate at y = {floor:g} m (one cell row of windbox)' if plate else ''}")
+    if box["height"] - floor < LID_OVER_BED * bed_height:
+        raise BedError(f"{path}: box.height: {box['height']:g} m leaves the bed (about {bed_height:.3g} m packed) no "
+                       f"room to expand or be poured; give at least {floor + LID_OVER_BED * bed_height:.3g} m")
+    weight_per_area = (rho - bed["gas"]["density"]) * 9.81 * solid_volume / (box["width"] * depth)
+    out["weight_per_area"] = weight_per_area
+    if plate:
+        fraction = inflow["plate"]["pressure_drop_fraction"]
+        # Darcy: dp = mu d L U over the plate's cell row, fraction x weight/area at U_mf
+        out["plate_darcy"] = fraction * weight_per_area / (bed["gas"]["viscosity"] * dy * u_mf)
+        note(f"plate: Darcy d = {out['plate_darcy']:.4g} 1/m^2 over the cell row below it: {fraction:g} of the bed's "
+             f"weight per area ({weight_per_area:.4g} Pa) at U_mf")
+    out["scene"] = scene
+    u_ratio = max(velocities) / u_mf
+    note(f"inflow {max(velocities):g} m/s = {u_ratio:.3g} U_mf (Wen-Yu, smallest spheres); terminal velocity "
+         f"{scene['terminal_velocity']:.3g} m/s")
+    return out
+
+
+def _foam_header(cls, obj):
+    return ("FoamFile\n{\n    version     2.0;\n    format      ascii;\n"
+            f"    class       {cls};\n    object      {obj};\n}}\n")
+
+
+def _g(v):
+    return f"{v:.10g}"
+
+
+def block_mesh(bed, dv):
+    """blockMeshDict: one block per span of x between jet edges and per row band (windbox)."""
+    width, height, depth = bed["box"]["width"], bed["box"]["height"], dv["depth"]
+    x_faces = sorted({0, dv["nx"]} | {j["from"] for j in dv["jets"]} | {j["to"] for j in dv["jets"]})
+    y_faces = [0, 1, dv["ny"]] if bed["inflow"]["plate"] else [0, dv["ny"]]
+    xs = [i * dv["dx"] for i in x_faces]
+    xs[-1] = width
+    ys = [j * dv["dy"] for j in y_faces]
+    ys[-1] = height
+    index = {}
+    vertices = []
+    for k, z in enumerate((0.0, depth)):
+        for j, y in enumerate(ys):
+            for i, x in enumerate(xs):
+                index[i, j, k] = len(vertices)
+                vertices.append(f"({_g(x)} {_g(y)} {_g(z)})")
+    blocks, faces = [], {"inlet": [], "outlet": [], "walls": [], "frontAndBack": []}
+    for jet in dv["jets"]:
+        faces[jet["name"]] = []
+    closed_bottom = bool(dv["jets"]) and bed["inflow"]["velocity"] == 0.0
+    if closed_bottom:
+        faces["bottom"] = faces.pop("inlet")
+    for j in range(len(ys) - 1):
+        for i in range(len(xs) - 1):
+            v = lambda a, b, c: index[i + a, j + b, c]
+            hexa = (v(0, 0, 0), v(1, 0, 0), v(1, 1, 0), v(0, 1, 0), v(0, 0, 1), v(1, 0, 1), v(1, 1, 1), v(0, 1, 1))
+            zone = " distributor" if bed["inflow"]["plate"] and j == 0 else ""
+            cells = (x_faces[i + 1] - x_faces[i], y_faces[j + 1] - y_faces[j], dv["nz"])
+            blocks.append(f"    hex ({' '.join(map(str, hexa))}){zone} ({cells[0]} {cells[1]} {cells[2]}) "
+                          "simpleGrading (1 1 1)")
+            if j == 0:
+                jet = next((t["name"] for t in dv["jets"] if t["from"] == x_faces[i]), None)
+                faces[jet or ("bottom" if closed_bottom else "inlet")].append(
+                    (v(0, 0, 0), v(1, 0, 0), v(1, 0, 1), v(0, 0, 1)))
+            if j == len(ys) - 2:
+                faces["outlet"].append((v(0, 1, 0), v(0, 1, 1), v(1, 1, 1), v(1, 1, 0)))
+            if i == 0:
+                faces["walls"].append((v(0, 0, 0), v(0, 0, 1), v(0, 1, 1), v(0, 1, 0)))
+            if i == len(xs) - 2:
+                faces["walls"].append((v(1, 0, 0), v(1, 1, 0), v(1, 1, 1), v(1, 0, 1)))
+            side = "frontAndBack" if dv["nz"] == 1 else "walls"
+            faces[side].append((v(0, 0, 0), v(0, 1, 0), v(1, 1, 0), v(1, 0, 0)))
+            faces[side].append((v(0, 0, 1), v(1, 0, 1), v(1, 1, 1), v(0, 1, 1)))
+    kinds = {"inlet": "patch", "outlet": "patch", "walls": "wall", "bottom": "wall", "frontAndBack": "empty"}
+    patches = []
+    for name, quads in faces.items():
+        if not quads:
+            continue
+        listed = " ".join("(" + " ".join(map(str, q)) + ")" for q in quads)
+        patches.append(f"    {name} {{ type {kinds.get(name, 'patch')}; faces ({listed}); }}")
+    return (_foam_header("dictionary", "blockMeshDict") +
+            f"\n// Generated by tfdem new: {width:g} x {height:g} x {depth:g} m, cells {dv['dx']:.4g} m "
+            f"({dv['nx']} x {dv['ny']} x {dv['nz']}); a uniform grid (the coupler needs one).\n"
+            "vertices\n(\n    " + "\n    ".join(vertices) + "\n);\nblocks\n(\n" + "\n".join(blocks) +
+            "\n);\nboundary\n(\n" + "\n".join(patches) + "\n);\n")
+
+
+def _patches(bed, dv):
+    closed_bottom = bool(dv["jets"]) and bed["inflow"]["velocity"] == 0.0
+    names = ["bottom" if closed_bottom else "inlet"] + [j["name"] for j in dv["jets"]] + ["outlet", "walls"]
+    return names + (["frontAndBack"] if dv["nz"] == 1 else [])
+
+
+def initial_fields(bed, dv):
+    """0/U, 0/p, 0/voidFraction: superficial inflow (eps = 1 on the inflow faces)."""
+    u, p, eps = [], [], []
+    jets = {j["name"]: j["velocity"] for j in dv["jets"]}
+    for name in _patches(bed, dv):
+        if name == "frontAndBack":
+            u.append((name, "type empty;")); p.append((name, "type empty;")); eps.append((name, "type empty;"))
+        elif name in jets or name == "inlet":
+            speed = jets.get(name, bed["inflow"]["velocity"])
+            u.append((name, f"type fixedValue; value uniform (0 {_g(speed)} 0);"))
+            p.append((name, "type fixedFluxPressure; value uniform 101325;"))
+            eps.append((name, "type fixedValue; value uniform 1;"))
+        elif name == "outlet":
+            u.append((name, "type pressureInletOutletVelocity; value uniform (0 0 0);"))
+            p.append((name, "type fixedValue; value uniform 101325;"))
+            eps.append((name, "type zeroGradient;"))
+        else:
+            u.append((name, "type noSlip;"))
+            p.append((name, "type fixedFluxPressure; value uniform 101325;"))
+            eps.append((name, "type zeroGradient;"))
+
+    def field(cls, obj, dims, internal, entries, comment):
+        body = "\n".join(f"    {n:<12} {{ {e} }}" for n, e in entries)
+        return (_foam_header(cls, obj) + f"dimensions      {dims};\ninternalField   {internal};\n"
+                f"boundaryField\n{{\n    // {comment}\n{body}\n}}\n")
+    return {
+        "U": field("volVectorField", "U", "[0 1 -1 0 0 0 0]", "uniform (0 0 0)", u,
+                   "superficial inflow velocities of bed.yaml (eps = 1 on the inflow faces); gas at rest at t = 0"),
+        "p": field("volScalarField", "p", "[1 -1 -2 0 0 0 0]", "uniform 101325", p,
+                   "pressure in Pa; fixed at the outlet"),
+        "voidFraction": field("volScalarField", "voidFraction", "[0 0 0 0 0 0 0]", "uniform 1", eps,
+                              "gas enters with no particles in the way"),
+    }
+
+
+def control_dict(bed, dv):
+    width, height = bed["box"]["width"], bed["box"]["height"]
+    z = dv["dz"] / 2
+    above_plate = dv["floor"] + dv["dy"] / 2
+    top = height - dv["dy"] / 2
+    pressure_every = max(1, int(round(1e-3 / dv["gas_step"])))
+    inlet = "" if "inlet" not in _patches(bed, dv) else f"""
+    // Mean pressure on the inlet (below the plate, if any: the windbox), for the fluidization curve
+    inletPressure
+    {{
+        type            surfaceFieldValue;
+        libs            ("libfieldFunctionObjects.so");
+        writeControl    timeStep;
+        writeInterval   {pressure_every};
+        log             false;
+        writeFields     false;
+        regionType      patch;
+        name            inlet;
+        operation       areaAverage;
+        fields          (p);
+    }}"""
+    return (_foam_header("dictionary", "controlDict") + f"""
+application     tfdemFoam;
+startFrom       startTime;
+startTime       0;
+stopAt          endTime;
+endTime         {_g(bed['run']['end_time'])};
+// gas step = dem.coupling_interval ({dv['coupling_interval']}) x DEM step ({dv['dem_step']:.4g} s, in.bed)
+deltaT          {dv['gas_step']!r};
+writeControl    runTime;
+writeInterval   {_g(bed['run']['write_interval'])};
+purgeWrite      0;
+writeFormat     ascii;
+writePrecision  17;
+writeCompression off;
+timeFormat      general;
+timePrecision   8;
+runTimeModifiable false;
+adjustTimeStep  no;
+
+functions
+{{
+    // Pressure above the first cell row of the bed and in the top row (the bed's whole
+    // pressure drop) every {pressure_every} gas steps
+    pressure
+    {{
+        type            probes;
+        libs            ("libsampling.so");
+        writeControl    timeStep;
+        writeInterval   {pressure_every};
+        fields          (p);
+        probeLocations  (({_g(width / 2)} {_g(above_plate)} {_g(z)}) ({_g(width / 2)} {_g(top)} {_g(z)}));
+    }}
+    // The top row's pressure again, for the fluidization curve's driver
+    abovePressure
+    {{
+        type            probes;
+        libs            ("libsampling.so");
+        writeControl    timeStep;
+        writeInterval   {pressure_every};
+        fields          (p);
+        probeLocations  (({_g(width / 2)} {_g(top)} {_g(z)}));
+    }}{inlet}
+}}
+""")
+
+
+def dem_script(bed, dv):
+    """in.bed: e_n, k_n and friction stated once as variables; every pair's damping from them."""
+    p, box = bed["particles"], bed["box"]
+    sizes = [s["diameter"] for s in p["sizes"]]
+    types = len(sizes) + 1
+    wall_type = types
+    lines = [f"# {len(sizes) == 1 and 'Monodisperse' or 'Bidisperse'} bed generated by tfdem new (edit freely: each value "
+             "is stated once, below, and the rest follows from it).",
+             f"# Atom types: {'1 the spheres' if len(sizes) == 1 else '1 the small, 2 the large spheres'}, "
+             f"{wall_type} the walls. Linear spring-dashpot contacts with absolute damping from e_n",
+             "# (seed 001 eq. 27) for each pair's reduced mass (seed 001 eq. 16; a wall: m_ab = m).",
+             f"variable        width equal {_g(box['width'])}",
+             f"variable        height equal {_g(box['height'])}",
+             f"variable        depth equal {_g(dv['depth'])}",
+             f"variable        floor equal {_g(dv['floor'])}" + ("   # the distributor plate" if dv["floor"] else ""),
+             f"variable        rho equal {_g(p['density'])}"]
+    for i, d in enumerate(sizes, 1):
+        lines.append(f"variable        d{i} equal {_g(d)}")
+        lines.append(f"variable        mass{i} equal v_rho*PI*v_d{i}^3/6")
+    lines += [f"variable        en equal {_g(p['restitution'])}          # e_n, particle pairs",
+              f"variable        en_wall equal {_g(p['wall']['restitution'])}     # e_n, particle-wall",
+              f"variable        mu equal {_g(p['friction'])}",
+              f"variable        mu_wall equal {_g(p['wall']['friction'])}",
+              f"variable        kn equal {dv['stiffness']:.6g}          # N/m" +
+              ("" if p["stiffness"] else f" (an impact at U_mf sinks {IMPACT_OVERLAP:.0%} of d)"),
+              "variable        kn_wall equal 2*v_kn   # the pairs' overlap and t_c for a wall's m_ab = m",
+              "variable        kt equal 2/7*v_kn",
+              "variable        kt_wall equal 2/7*v_kn_wall"]
+
+    def pair(i, j):
+        return f"v_mass{i}*v_mass{j}/(v_mass{i}+v_mass{j})" if j else f"v_mass{i}"
+
+    for i in range(1, len(sizes) + 1):
+        for j in list(range(i, len(sizes) + 1)) + [0]:
+            name = f"eta{i}{j}" if j else f"eta{i}w"
+            e, k = ("v_en", "v_kn") if j else ("v_en_wall", "v_kn_wall")
+            lines.append(f"variable        {name} equal -2*ln({e})*sqrt(({pair(i, j)})*{k})/sqrt(PI^2+ln({e})^2)")
+
+    def matrix(entry):
+        rows = []
+        for a in range(1, types + 1):
+            for b in range(1, types + 1):
+                rows.append(entry(min(a, b), max(a, b)))
+        return " ".join(rows)
+
+    def is_wall(a, b):
+        return b == wall_type
+
+    def eta(a, b):
+        if a == wall_type:
+            return f"${{eta{len(sizes)}w}}"
+        return f"${{eta{a}w}}" if is_wall(a, b) else f"${{eta{a}{b}}}"
+
+    kn = matrix(lambda a, b: "${kn_wall}" if is_wall(a, b) else "${kn}")
+    kt = matrix(lambda a, b: "${kt_wall}" if is_wall(a, b) else "${kt}")
+    damping = matrix(eta)
+    friction = matrix(lambda a, b: "${mu_wall}" if is_wall(a, b) else "${mu}")
+    walls = [("wall_x0", "xplane 0"), ("wall_x1", "xplane ${width}"), ("plate", "yplane ${floor}"),
+             ("lid", "yplane ${height}")]
+    if not dv["one_layer"]:
+        walls += [("wall_z0", "zplane 0"), ("wall_z1", "zplane ${depth}")]
+    lines += ["atom_style      granular",
+              "atom_modify     map array sort 0 0",
+              "boundary        f f f",
+              "newton          off",
+              "communicate     single vel yes",
+              "units           si",
+              "processors      * * 1",
+              "read_data       bed.data",
+              f"neighbor        {_g(0.2 * sizes[-1])} bin",
+              "neigh_modify    delay 0",
+              "",
+              f"fix             m1 all property/global kn peratomtypepair {types} {kn}",
+              f"fix             m2 all property/global kt peratomtypepair {types} {kt}",
+              f"fix             m3 all property/global gamman_abs peratomtypepair {types} {damping}",
+              f"fix             m4 all property/global gammat_abs peratomtypepair {types} {damping}",
+              f"fix             m5 all property/global coefficientFriction peratomtypepair {types} {friction}",
+              "pair_style      gran model hooke/stiffness tangential history absolute_damping on",
+              "pair_coeff      * *",
+              "# store_force: each wall's force on the particles (forces.txt below)"]
+    for name, plane in walls:
+        lines.append(f"fix             {name} all wall/gran model hooke/stiffness tangential history primitive "
+                     f"type {wall_type} {plane} store_force yes absolute_damping on")
+    lines += ["",
+              f"# The scene check's rule (tfdem-scene-check): t_c/{dv['scene']['pair']['steps_per_contact']:.3g} of the "
+              "smallest pair; the gas step (system/controlDict deltaT) is coupling_interval of these",
+              f"timestep        {dv['dem_step']!r}",
+              "fix             grav all gravity 9.81 vector 0 -1 0",
+              "fix             fluid all tfdem/coupling",
+              "fix             integr all nve/sphere",
+              "",
+              "compute         height all reduce ave y",
+              "thermo_style    custom step atoms ke c_height",
+              f"thermo          {max(1, int(round(0.1 / dv['dem_step'])))}",
+              "",
+              "# Mean particle height every 1 ms",
+              "variable        t equal step*dt",
+              "variable        h equal c_height",
+              f"fix             height_out all print {max(1, int(round(1e-3 / dv['dem_step'])))} \"${{t}} ${{h}}\" "
+              "file mean_height.txt screen no title \"# t (s)  mean particle height (m)\"",
+              "# Where the bed's weight goes: vertical force on all particles from the gas, the plate, the",
+              "# side walls and the lid, averaged over 1 ms",
+              "compute         f_gas all reduce sum f_fluid[2]",
+              "compute         f_plate all reduce sum f_force_plate[2]",
+              "compute         f_side all reduce sum f_force_wall_x0[2] f_force_wall_x1[2]",
+              "compute         f_lid all reduce sum f_force_lid[2]"]
+    every = max(1, int(round(1e-3 / dv["dem_step"])))
+    lines.append(f"fix             forces_out all ave/time 1 {every} {every} c_f_gas c_f_plate c_f_side[1] "
+                 "c_f_side[2] c_f_lid file forces.txt")
+    return "\n".join(lines) + "\n"
+
+
+def coupling_yaml(bed, dv):
+    sizes = [s["diameter"] for s in bed["particles"]["sizes"]]
+    diameter = _g(sizes[0]) if len(sizes) == 1 else "[" + ", ".join(_g(d) for d in sizes) + "]"
+    return f"""# Generated by tfdem new from bed.yaml.
+gas:
+  density: {_g(bed['gas']['density'])}          # kg/m^3 (constant/transportProperties: the same)
+  viscosity: {_g(bed['gas']['viscosity'])}     # Pa s
+particles:
+  diameter: {diameter}      # m
+  density: {_g(bed['particles']['density'])}       # kg/m^3
+dem:
+  script: in.bed
+  coupling_interval: {dv['coupling_interval']}   # DEM steps of {dv['dem_step']:.4g} s per gas step of {dv['gas_step']:g} s
+coupling:
+  transfer: {bed['coupling']['transfer']}
+  drag_law: {bed['coupling']['drag_law']}
+  void_fraction:
+    method: centroid    # cells {dv['dx'] / sizes[-1]:.3g} diameters wide
+    two_dimensional: {'true' if dv['one_layer'] else 'false'}
+    floor: 0.3
+output:
+  statistics_interval: {_g(dv['statistics_interval'])}   # s: N_c, mean height, ... (statistics.csv)
+  particles_vtk: true
+"""
+
+
+def packing_yaml(bed, dv):
+    lines = ["# The packing `tfdem pack` pours (tfdem.packing): its count and mixture from bed.yaml",
+             f"count: {dv['count']}"]
+    if len(bed["particles"]["sizes"]) == 2:
+        lines.append(f"mass_fraction_small: {dv['mass_fraction_small']!r}")
+    lines.append(f"floor: {_g(dv['floor'])}")
+    return "\n".join(lines) + "\n"
+
+
+def fv_options(bed, dv):
+    d = _g(dv["plate_darcy"])
+    return (_foam_header("dictionary", "fvOptions") + f"""
+// The distributor plate's porous body (the cell row below the plate, cellZone distributor):
+// Darcy dp = mu d L U, {bed['inflow']['plate']['pressure_drop_fraction']:g} of the bed's weight per area at U_mf (tfdem new).
+distributor
+{{
+    type            explicitPorositySource;
+    explicitPorositySourceCoeffs
+    {{
+        selectionMode   cellZone;
+        cellZone        distributor;
+        type            DarcyForchheimer;
+        DarcyForchheimerCoeffs
+        {{
+            d   ({d} {d} {d});
+            f   (0 0 0);
+            coordinateSystem {{ origin (0 0 0); e1 (1 0 0); e2 (0 1 0); }}
+        }}
+    }}
+}}
+""")
+
+
+ALLRUN = """#!/usr/bin/env bash
+# Generated by tfdem new: packs the bed if there is none (tfdem pack), meshes, runs tfdemFoam.
+# Usage: ./Allrun [MPI ranks, default 1]
+set -euo pipefail
+cd "$(dirname "$0")"
+. "{env}"
+ranks=${{1:-1}}
+[ -f bed.data ] || "$TFDEM_PYTHON" -m tfdem.packing . > log.pack
+blockMesh > log.blockMesh 2>&1
+solver=(tfdemFoam)
+[ "$ranks" -gt 1 ] && solver=(mpirun -np "$ranks" tfdemFoam)
+"${{solver[@]}}" 2>&1 | tee log.tfdemFoam | grep --line-buffered "TFDEM progress" || {{ tail -n 30 log.tfdemFoam; exit 1; }}
+grep -q "^End" log.tfdemFoam || {{ tail -n 30 log.tfdemFoam; exit 1; }}
+"""
+
+ALLCLEAN = """#!/usr/bin/env bash
+# Removes what the run made; keeps the inputs and the packed bed (bed.data; delete it to re-pour).
+cd "$(dirname "$0")" || exit 1
+rm -rf tfdem.lock *.tfdem-resume log.tfdemFoam log.blockMesh [1-9]* 0.[0-9]* constant/polyMesh processor* \\
+    postProcessing mean_height.txt forces.txt VTK in.bed.resumed
+"""
+
+
+def write_case(dest, bed, dv, source=None):
+    """Write the case into `dest` (must not exist)."""
+    if os.path.exists(dest):
+        raise BedError(f"{dest}: exists; give a new folder (nothing was written)")
+    for folder in ("0", "constant", "system"):
+        os.makedirs(os.path.join(dest, folder))
+    files = {
+        "system/blockMeshDict": block_mesh(bed, dv),
+        "system/controlDict": control_dict(bed, dv),
+        "constant/g": _foam_header("uniformDimensionedVectorField", "g") +
+        "dimensions      [0 1 -2 0 0 0 0];\nvalue           (0 -9.81 0);\n",
+        "constant/transportProperties": _foam_header("dictionary", "transportProperties") +
+        f"// the gas of bed.yaml (coupling.yaml: the same)\nrho     {_g(bed['gas']['density'])};\n"
+        f"nu      {_g(bed['gas']['viscosity'] / bed['gas']['density'])};\n",
+        "in.bed": dem_script(bed, dv),
+        "coupling.yaml": coupling_yaml(bed, dv),
+        "packing.yaml": packing_yaml(bed, dv),
+        "Allrun": ALLRUN.format(env=os.path.join(SOURCE_DIR, "scripts", "tfdem-env.sh")),
+        "Allclean": ALLCLEAN,
+        "derived.txt": "What tfdem new derived, and why:\n" + "".join(f"  {n}\n" for n in dv["notes"]),
+    }
+    for name, text in initial_fields(bed, dv).items():
+        files[f"0/{name}"] = text
+    if bed["inflow"]["plate"]:
+        files["constant/fvOptions"] = fv_options(bed, dv)
+    for name in ("fvSchemes", "fvSolution"):
+        shutil.copy(os.path.join(FIELDS_TEMPLATE, name), os.path.join(dest, "system", name))
+    for name, text in files.items():
+        with open(os.path.join(dest, name), "w") as f:
+            f.write(text)
+    for name in ("Allrun", "Allclean"):
+        os.chmod(os.path.join(dest, name), 0o755)
+    if source:
+        shutil.copy(source, os.path.join(dest, "bed.yaml"))
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(prog="tfdem new", description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("case", help="the new case's folder (must not exist)")
+    parser.add_argument("--from", dest="source", required=True, help="the bed's YAML")
+    args = parser.parse_args(argv)
+    try:
+        bed = load_bed(args.source)
+        dv = derive(bed, args.source)
+        write_case(args.case, bed, dv, args.source)
+    except BedError as e:
+        print(f"tfdem new: {e}", file=sys.stderr)
+        return 2
+    print(f"tfdem new: wrote {args.case}. What it derived, and why (also in {args.case}/derived.txt):")
+    for line in dv["notes"]:
+        print(f"  {line}")
+    print(f"Next: tfdem pack {args.case} (pours the bed), then {args.case}/Allrun")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

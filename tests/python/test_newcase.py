@@ -1,0 +1,150 @@
+"""tfdem new's derivations against numbers worked by hand, and its refusals of bad input (each
+message names the key and the fix). No simulation: the generated files are read back.
+
+The bed: 800 glass beads of 1 mm (2500 kg/m^3, e_n 0.9) in a 4 x 12 cm column one layer deep,
+on a plate taking 0.3 of the weight. By hand:
+  Ar = 1.2 (2498.8) 9.81 (1e-9) / (1.8e-5)^2 = 90789.7; Re_mf = sqrt(33.7^2 + 0.0408 Ar) - 33.7
+     = 35.870; U_mf = 35.870 (1.8e-5) / (1.2 (0.001)) = 0.53805 m/s (Wen and Yu)
+  m = 2500 pi 1e-9 / 6 = 1.30900e-6 kg, m_ab = 6.54498e-7 kg
+  k_n = m_ab (U_mf / (0.05 d))^2 = 6.54498e-7 (10761.0)^2 = 75.790 N/m
+  eta_n = -2 ln(0.9) sqrt(m_ab k_n) / sqrt(pi^2 + ln^2 0.9) = 0.210721 (7.04304e-3) / 3.14336
+        = 4.7214e-4 N s/m (seed 001 eq. 27); the wall's (m_ab = m, k = 2 k_n): twice that
+  t_c = sqrt(m_ab (pi^2 + ln^2 0.9) / k_n) = 2.9211e-4 s; the rule for e_n 0.9:
+        37 + 20 (0.9 - 0.86) / 0.11 = 44.273 steps, dt <= 6.5979e-6 s
+  gas step 5e-4 s (the cap); 5e-4 / 6.5979e-6 = 75.78 -> 76 DEM steps of 6.5789e-6 s
+  weight / area = 2498.8 (9.81) 800 (5.23599e-10) / (0.04 (0.001)) = 256.70 Pa
+  plate: d = 0.3 (256.70) / (1.8e-5 (0.004) 0.53805) = 1.9879e9 1/m^2
+  cells: 4 d = 4 mm -> 10 x 30 x 1
+"""
+import os
+import re
+import sys
+import tempfile
+
+from tfdem.case import Case, DemScript
+from tfdem.newcase import BedError, derive, load_bed, main, write_case
+
+failures = []
+
+BED = """
+box: {width: 0.04, height: 0.12, depth: one_layer}
+particles:
+  density: 2500
+  sizes: [{diameter: 0.001, number: 800}]
+  restitution: 0.9
+  friction: 0.1
+gas: {density: 1.2, viscosity: 1.8e-5}
+inflow: {velocity: 0.8, plate: {pressure_drop_fraction: 0.3}}
+run: {end_time: 0.05, write_interval: 0.05}
+"""
+
+
+def check(name, condition, detail=""):
+    print(("PASS " if condition else "FAIL ") + name + (f" {detail}" if detail else ""))
+    if not condition:
+        failures.append(name)
+
+
+def close(name, value, expected, rel=1e-4):
+    check(name, abs(value - expected) <= rel * abs(expected), f"({value:.6g} vs {expected:.6g} by hand)")
+
+
+def write(root, name, text):
+    path = os.path.join(root, name)
+    with open(path, "w") as f:
+        f.write(text)
+    return path
+
+
+def check_derived(root):
+    source = write(root, "bed.yaml", BED)
+    bed = load_bed(source)
+    dv = derive(bed, source)
+    close("U_mf (Wen-Yu)", dv["u_mf"], 0.53805)
+    close("k_n", dv["stiffness"], 75.790)
+    close("DEM step", dv["dem_step"], 6.5789e-6)
+    check("coupling interval", dv["coupling_interval"] == 76, f"({dv['coupling_interval']})")
+    close("gas step", dv["gas_step"], 5e-4, 1e-12)
+    close("plate's Darcy coefficient", dv["plate_darcy"], 1.9879e9)
+    check("cells", (dv["nx"], dv["ny"], dv["nz"]) == (10, 30, 1), f"({dv['nx']} x {dv['ny']} x {dv['nz']})")
+    case_path = os.path.join(root, "case")
+    write_case(case_path, bed, dv, source)
+    script = DemScript(os.path.join(case_path, "in.bed"))
+    close("in.bed: the pair's damping from e_n (eq. 27)", script.value("${eta11}"), 4.7214e-4)
+    close("in.bed: the wall's damping", script.value("${eta1w}"), 2 * 4.7214e-4)
+    close("in.bed: DEM step", script.value(script.command("timestep")[1]), 6.5789e-6)
+    case = Case(case_path)
+    close("controlDict deltaT = coupling_interval x DEM step", case.delta_t(),
+          76 * script.value(script.command("timestep")[1]), 1e-14)
+    lo, hi = case.mesh_bounds()
+    check("mesh: the box of bed.yaml, one diameter deep", (lo, hi) == ((0, 0, 0), (0.04, 0.12, 0.001)), f"({lo}, {hi})")
+    check("mesh: the windbox row is the distributor zone", case.block_bounds("distributor")[1][1] == 0.004)
+    close("fvOptions: the plate's d", case.porosity()["d"][0], 1.9879e9)
+    check("packing.yaml: count and floor", open(os.path.join(case_path, "packing.yaml")).read().count("count: 800") == 1
+          and "floor: 0.004" in open(os.path.join(case_path, "packing.yaml")).read())
+    check("a second write into the same folder is refused", _refused(lambda: write_case(case_path, bed, dv)))
+
+
+def _refused(action):
+    try:
+        action()
+    except BedError:
+        return True
+    return False
+
+
+BAD = [
+    ("a box narrower than a particle", ("width: 0.04", "width: 0.0008"), r"box\.width: 0\.0008 m is narrower than a particle"),
+    ("e_n above 1", ("restitution: 0.9", "restitution: 1.2"), r"particles\.restitution: 1\.2 is outside \(0, 1\]"),
+    ("e_n of 0", ("restitution: 0.9", "restitution: 0"), r"particles\.restitution: 0 is outside \(0, 1\]"),
+    ("e_n of 1 (no damping)", ("restitution: 0.9", "restitution: 1.0"), r"particles\.restitution: e_n = 1"),
+    ("mass fractions not summing to 1",
+     ("sizes: [{diameter: 0.001, number: 800}]",
+      "sizes: [{diameter: 0.001, mass_fraction: 0.5}, {diameter: 0.002, mass_fraction: 0.4}]\n  count: 800"),
+     r"particles\.sizes: the mass fractions sum to 0\.9, not 1"),
+    ("a jet wider than the box", ("inflow: {velocity: 0.8, plate: {pressure_drop_fraction: 0.3}}",
+                                  "inflow: {jets: [{centre: 0.02, width: 0.05, velocity: 20}]}"),
+     r"inflow\.jets\[0\]: x = -0\.005 to 0\.045 m reaches past the box"),
+    ("a jet off the cells' faces", ("inflow: {velocity: 0.8, plate: {pressure_drop_fraction: 0.3}}",
+                                    "inflow: {jets: [{centre: 0.02, width: 0.004, velocity: 20}]}"),
+     r"inflow\.jets\[0\]: its edges x = 0\.018 and 0\.022 m are not on the gas cells' faces .*e\.g\. 0\.004"),
+    ("a misspelt key", ("width: 0.04", "widht: 0.04"), r"box\.widht: unknown key \(did you mean 'width'\?\)"),
+    ("an unknown drag law (the core's list)", ("run:", "coupling: {drag_law: ergun_wenyu}\nrun:"),
+     r"bad\.yaml: coupling\.drag_law: unknown value 'ergun_wenyu' \(did you mean 'ergun_wen_yu'\?\)"),
+    ("a column too short for its bed", ("height: 0.12", "height: 0.03"), r"box\.height: 0\.03 m leaves the bed"),
+    ("three sizes", ("sizes: [{diameter: 0.001, number: 800}]",
+                     "sizes: [{diameter: 0.001, number: 8}, {diameter: 0.002, number: 8}, {diameter: 0.003, number: 8}]"),
+     r"particles\.sizes: expected a list of one or two sizes"),
+]
+
+
+def check_refusals(root):
+    for name, (old, new), pattern in BAD:
+        assert old in BED, old
+        source = write(root, "bad.yaml", BED.replace(old, new, 1))
+        dest = os.path.join(root, "bad_case")
+        code = None
+        stderr = sys.stderr
+        with tempfile.TemporaryFile("w+") as err:
+            sys.stderr = err
+            try:
+                code = main([dest, "--from", source])
+            finally:
+                sys.stderr = stderr
+            err.seek(0)
+            message = err.read().strip()
+        check(f"refused: {name}", code == 2 and re.search(pattern, message) and not os.path.exists(dest),
+              f"({message})")
+
+
+def main_test():
+    with tempfile.TemporaryDirectory() as root:
+        check_derived(root)
+        check_refusals(root)
+    if failures:
+        print(f"{len(failures)} check(s) failed: {', '.join(failures)}")
+        sys.exit(1)
+
+
+if __name__ == "__main__":
+    main_test()
