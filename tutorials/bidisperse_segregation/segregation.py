@@ -8,7 +8,8 @@ in runs/<law>/ from it, `jobs` runs at a time on `ranks` ranks each; a run that 
 resumes from its last checkpoint (every write interval) when run again, a finished one is
 skipped, and one given a later end time carries on from its last checkpoint. `report` prints
 the degree of segregation s(t) (the coupler's particle statistics, every 0.1 s) at the times
-the runs reached, beside the seed's, and draws segregation.png.
+the runs reached, beside the seed's, draws segregation.png and keeps each run's s(t) in
+results/<run>.csv (the README's numbers are read from these).
 
 The laws (coupling.yaml gives the polydisperse one):
 - polydisperse: Beetstra et al.'s (2007) monodisperse law (seed 001 eq. 6) at the local Sauter
@@ -64,6 +65,14 @@ def segregation_series(law, root=HERE):
     return stats["t"], stats.get("segregation", [])
 
 
+def write_series(path, t, s):
+    """A run's s(t), a row per sample."""
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    with open(path, "w") as f:
+        f.write("# t (s), degree of segregation s (seed 001 eq. 49)\n")
+        f.writelines(f"{ti:.6g},{si:.6g}\n" for ti, si in zip(t, s))
+
+
 def report(root=HERE):
     import matplotlib
     matplotlib.use("Agg")
@@ -80,6 +89,7 @@ def report(root=HERE):
         hard = law.endswith(HARD_SPHERE)
         style = styles[law[:-len(HARD_SPHERE)] if hard else law].replace("k", "C1" if hard else "k")
         run_ = segregation_run(law, 1, root)
+        write_series(os.path.join(root, "results", f"{law}.csv"), t, s)
         reached = ", ".join(f"s({x:g} s) = {value_at(t, s, x):.3f}" for x in REPORT_TIMES if x <= t[-1] + 1e-9)
         print(f"{law}: t = {t[-1]:g} s reached ({clock(run_.cpu_seconds())} processor time); {reached}")
         for ax in (whole, reached_axes):
