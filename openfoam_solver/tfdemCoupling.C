@@ -215,7 +215,12 @@ void Foam::TfdemCoupling::startDem(const vector& g)
     }
     Info<< "TFDEM coupling: " << dem_->global_count() << " particles, DEM step "
         << static_cast<const tfdem::DemInstance&>(*dem_).time_step() << " s, "
-        << config_.coupling_interval << " DEM steps per gas step" << nl << endl;
+        << tfdemChecks::couplingInterval
+           (
+               config_, mesh_.time().deltaTValue(),
+               static_cast<const tfdem::DemInstance&>(*dem_).time_step()
+           )
+        << " DEM steps per gas step" << nl << endl;
 }
 
 

@@ -620,7 +620,7 @@ void Foam::tfdemChecks::scene
     s.normal_stiffness = contact.stiffness;
     s.normal_damping = contact.damping;
     s.dem_time_step = dem.time_step();
-    s.coupling_interval = config.coupling_interval;
+    s.coupling_interval = tfdemChecks::couplingInterval(config, U.mesh().time().deltaTValue(), dem.time_step());
     s.drag_law = config.transfer.law;
     try
     {
@@ -657,6 +657,22 @@ void Foam::tfdemChecks::timeSteps
             << " case: the gas step is coupling_interval DEM steps"
             << exit(FatalError);
     }
+    if (config.coupling_interval == 0)
+    {
+        const double steps = runTime.deltaTValue()/dem.time_step();
+        if (std::llround(steps) < 1 || relativeDifference(steps, std::llround(steps)) > 1e-9)
+        {
+            const long below = std::max(1L, static_cast<long>(std::floor(steps)));
+            FatalErrorInFunction
+                << "system/controlDict: deltaT = " << runTime.deltaTValue()
+                << " s is not a whole number of DEM steps of " << dem.time_step()
+                << " s (the DEM script's timestep; " << steps << " of them): use deltaT = "
+                << below << " x " << dem.time_step() << " = " << below*dem.time_step()
+                << " s, or a DEM timestep of deltaT / " << below << " = "
+                << runTime.deltaTValue()/below << " s" << exit(FatalError);
+        }
+        return;
+    }
     const double demInterval = config.coupling_interval*dem.time_step();
     if (relativeDifference(runTime.deltaTValue(), demInterval) > 1e-9)
     {
@@ -668,4 +684,15 @@ void Foam::tfdemChecks::timeSteps
             << "); the coupling interval must divide the gas step evenly"
             << exit(FatalError);
     }
+}
+
+
+long Foam::tfdemChecks::couplingInterval
+(
+    const tfdem::CouplingConfig& config,
+    double gasStep,
+    double demStep
+)
+{
+    return config.coupling_interval > 0 ? config.coupling_interval : std::llround(gasStep/demStep);
 }

@@ -388,10 +388,8 @@ CouplingConfig parse_coupling_config(const std::string &file, const std::string 
   };
   if (c.engine == Engine::Liggghts) {
     c.dem_script = dem.text("script", "", true);
-    if (root.has("dem") && !dem.has("coupling_interval"))
-      dem.report("coupling_interval", "missing (required): the DEM steps per gas step, system/controlDict deltaT "
-                                      "divided by the DEM script's timestep");
-    c.coupling_interval = dem.integer("coupling_interval", 1, 1, 1000000);
+    // optional: the solver derives it as deltaT / the DEM step (which must be whole); given, it is checked
+    c.coupling_interval = dem.has("coupling_interval") ? dem.integer("coupling_interval", 1, 1, 1000000) : 0;
     refuse("particles", "hard_sphere");
     refuse("hard_sphere", "hard_sphere");
   } else {
@@ -460,7 +458,8 @@ std::string describe(const CouplingConfig &c) {
          std::ostringstream dem;
          dem.precision(10);
          if (c.engine == Engine::Liggghts) {
-           dem << "  script: " << c.dem_script << "\n  coupling_interval: " << c.coupling_interval << "\n";
+           dem << "  script: " << c.dem_script << "\n";
+           if (c.coupling_interval > 0) dem << "  coupling_interval: " << c.coupling_interval << "\n";
            return dem.str();
          }
          const auto list = [](const std::vector<double> &v) {

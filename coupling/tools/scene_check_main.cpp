@@ -21,7 +21,8 @@
 namespace {
 
 const std::vector<std::string> kOptions = {"--gas-velocity", "--cell-size", "--kn",      "--en",
-                                           "--damping",      "--dt",        "--wall-kn", "--wall-en"};
+                                           "--damping",      "--dt",        "--wall-kn", "--wall-en",
+                                           "--gas-step"};
 const std::vector<std::string> kFlags = {"--json"};
 
 const char *kUsage =
@@ -37,6 +38,8 @@ const char *kUsage =
     "  --en E             particle-particle normal restitution e_n in [0, 1) ...\n"
     "  --damping ETA      ... or its normal damping eta_n (absolute), N s/m\n"
     "  --dt DT            DEM time step, s (default: the recommended one)\n"
+    "  --gas-step DT      gas step, s: the coupling interval when coupling.yaml leaves\n"
+    "                     dem.coupling_interval out (deltaT / the DEM step)\n"
     "  --wall-kn K        particle-wall normal stiffness, N/m, with --wall-en: the wall contact's\n"
     "  --wall-en E        damping, contact time and step too (a wall has infinite mass)\n"
     "  --json             the numbers and findings as one JSON object (damping of the contacts\n"
@@ -150,7 +153,7 @@ int main(int argc, char **argv) {
     if (values.count(option) && !(values[option] >= 0.0 && values[option] < 1.0))
       return usage_error(std::string("option ") + option + " is a restitution coefficient in [0, 1), got " +
                          std::to_string(values[option]) + " (1 would be a perfectly elastic contact with no damping)");
-  for (const char *option : {"--gas-velocity", "--cell-size", "--kn", "--dt", "--wall-kn"})
+  for (const char *option : {"--gas-velocity", "--cell-size", "--kn", "--dt", "--wall-kn", "--gas-step"})
     if (values.count(option) && !(values[option] > 0.0))
       return usage_error(std::string("option ") + option + " must be > 0, got " + std::to_string(values[option]));
   try {
@@ -178,6 +181,11 @@ int main(int argc, char **argv) {
     double recommended = pair.recommended_time_step;
     if (has_wall) recommended = std::min(recommended, wall.recommended_time_step);
     scene.dem_time_step = values.count("--dt") ? values["--dt"] : recommended;
+    if (values.count("--gas-step"))
+      scene.coupling_interval = std::max(1L, std::lround(values["--gas-step"] / scene.dem_time_step));
+    else if (scene.coupling_interval == 0)
+      return usage_error(std::string(argv[1]) + " leaves dem.coupling_interval out (deltaT / the DEM step): give "
+                         "--gas-step (system/controlDict deltaT)");
     const tfdem::SceneReport report = tfdem::check_scene(scene);
     if (flags.count("--json"))
       std::printf("%s", report_json(report, scene, pair, has_wall ? &wall : nullptr).c_str());

@@ -417,8 +417,8 @@ class Case:
 
     def set_time_steps(self, dem=None, gas=None):
         """DEM step (the DEM script's `timestep`) and gas step (controlDict deltaT), each kept
-        when None; the coupling interval (dem.coupling_interval) is their ratio, which must be
-        a whole number."""
+        when None; the coupling interval (dem.coupling_interval, when the case states it) is
+        their ratio, which must be a whole number."""
         dem = self.dem_time_step() if dem is None else float(dem)
         gas = self.delta_t() if gas is None else float(gas)
         if not (dem > 0 and gas > 0):
@@ -433,7 +433,8 @@ class Case:
             raise CaseError(f"{script}: expected one 'timestep' command, found {n}")
         with open(script, "w") as out:
             out.write(text)
-        self.set_coupling("dem.coupling_interval", int(round(interval)))
+        if self.coupling_value("dem.coupling_interval") is not None:  # left out, the solver derives it
+            self.set_coupling("dem.coupling_interval", int(round(interval)))
         self.set_control(deltaT=f"{gas:.12g}")
 
     def particles(self, data_file=None):

@@ -524,7 +524,7 @@ startFrom       startTime;
 startTime       0;
 stopAt          endTime;
 endTime         {_g(bed['run']['end_time'])};
-// gas step = dem.coupling_interval ({dv['coupling_interval']}) x DEM step ({dv['dem_step']:.4g} s, in.bed)
+// gas step: a whole number of DEM steps ({dv['coupling_interval']} of in.bed's {dv['dem_step']:.4g} s)
 deltaT          {dv['gas_step']!r};
 writeControl    runTime;
 writeInterval   {_g(bed['run']['write_interval'])};
@@ -649,7 +649,7 @@ def dem_script(bed, dv):
                      f"type {wall_type} {plane} store_force yes absolute_damping on")
     lines += ["",
               f"# The scene check's rule (tfdem-scene-check): t_c/{dv['scene']['pair']['steps_per_contact']:.3g} of the "
-              "smallest pair; the gas step (system/controlDict deltaT) is coupling_interval of these",
+              "smallest pair; the gas step (system/controlDict deltaT) is a whole number of these",
               f"timestep        {dv['dem_step']!r}",
               "fix             grav all gravity 9.81 vector 0 -1 0",
               "fix             fluid all tfdem/coupling",
@@ -687,8 +687,8 @@ particles:
   diameter: {diameter}      # m
   density: {_g(bed['particles']['density'])}       # kg/m^3
 dem:
-  script: in.bed
-  coupling_interval: {dv['coupling_interval']}   # DEM steps of {dv['dem_step']:.4g} s per gas step of {dv['gas_step']:g} s
+  script: in.bed        # its timestep is the DEM step; the gas step (system/controlDict deltaT)
+                        # is {dv['coupling_interval']} of them (the solver checks it is a whole number)
 coupling:
   transfer: {bed['coupling']['transfer']}
   drag_law: {bed['coupling']['drag_law']}

@@ -280,6 +280,13 @@ def second_solver(c):
     return {"cleanup": stop}
 
 
+def interval_left_out_and_uneven(c):
+    """coupling.yaml without dem.coupling_interval (the solver derives it) and a gas step of
+    15.5 DEM steps."""
+    probe.edit(os.path.join(c, "coupling.yaml"), "  coupling_interval: 10\n", "")
+    probe.edit(os.path.join(c, "system", "controlDict"), "deltaT          1e-3;", "deltaT          1.55e-3;")
+
+
 def record_forces_unwritable(c):
     return {"command": ["tfdemFoam", "-recordForces", "/nonexistent/forces.bin"]}
 
@@ -309,8 +316,6 @@ CONFIG = [
     ("key given twice", yaml("  coupling_interval: 10\n", "  coupling_interval: 10\n  coupling_interval: 20\n"),
      ["dem.coupling_interval: given twice (first at", "keep one"]),
     ("dem.script missing", yaml("  script: in.settling\n", ""), ["dem.script: missing (required)"]),
-    ("coupling_interval missing", yaml("  coupling_interval: 10\n", ""),
-     ["dem.coupling_interval: missing (required): the DEM steps per gas step"]),
     ("coupling_interval not a number", yaml("coupling_interval: 10", "coupling_interval: ten"),
      ["dem.coupling_interval: must be a whole number, got 'ten'"]),
     ("coupling_interval 0", yaml("coupling_interval: 10", "coupling_interval: 0"),
@@ -455,6 +460,8 @@ GAS = [
     ("coupling interval does not divide the gas step",
      in_case(os.path.join("system", "controlDict"), "deltaT          1e-3;", "deltaT          1.5e-3;"),
      ["deltaT = 0.0015 s must equal dem.coupling_interval x DEM timestep = 10 x 0.0001 = 0.001 s"]),
+    ("coupling_interval left out, deltaT not a whole number of DEM steps", interval_left_out_and_uneven,
+     ["deltaT = 0.00155 s is not a whole number of DEM steps of 0.0001 s", "use deltaT = 15 x 0.0001 = 0.0015 s"]),
     ("deltaT 0", in_case(os.path.join("system", "controlDict"), "deltaT          1e-3;", "deltaT          0;"),
      ["deltaT must be a positive time step"]),
     ("writeInterval 0", control(writeInterval=0), ["writeInterval 0", "it must be positive"]),

@@ -147,10 +147,9 @@ TEST(Config, UnclosedQuoteIsNamed) {
   EXPECT_TRUE(problems_of(replaced(kValid, "script: in.bed", "script: bed's.in")).empty());
 }
 
-TEST(Config, CouplingIntervalIsRequired) {
-  const auto p = problems_of(replaced(kValid, "  coupling_interval: 50\n", ""));
-  ASSERT_EQ(p.size(), 1u);
-  EXPECT_TRUE(contains(p, "dem.coupling_interval: missing (required): the DEM steps per gas step")) << p[0];
+TEST(Config, CouplingIntervalLeftOutIsDerivedBySolver) {
+  const auto c = parse_coupling_config("coupling.yaml", replaced(kValid, "  coupling_interval: 50\n", ""));
+  EXPECT_EQ(c.coupling_interval, 0);  // 0: the solver takes deltaT / the DEM step
 }
 
 const char *kHardSphere = R"(gas:

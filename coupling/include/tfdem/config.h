@@ -141,7 +141,7 @@ struct CouplingConfig {
   double particle_density = 0.0;   // rho_p (kg/m^3)
   Engine engine = Engine::Liggghts;
   std::string dem_script;         // liggghts: the LIGGGHTS input, relative to the case directory
-  long coupling_interval = 1;     // liggghts: DEM steps per gas step
+  long coupling_interval = 0;     // liggghts: DEM steps per gas step; 0 (left out): deltaT / the DEM step
   std::string dem_particles;      // hard_sphere: the particles' LIGGGHTS data file
   HardSphereOptions hard_sphere;  // hard_sphere: the collision model
   std::vector<std::string> outlets;  // gas patches through which particles leave the DEM
