@@ -657,33 +657,29 @@ void Foam::tfdemChecks::timeSteps
             << " case: the gas step is coupling_interval DEM steps"
             << exit(FatalError);
     }
-    if (config.coupling_interval == 0)
+    // Given or derived, the gas step must be that many DEM steps
+    const double deltaT = runTime.deltaTValue(), dt = dem.time_step();
+    const long interval = couplingInterval(config, deltaT, dt);
+    if (interval >= 1 && relativeDifference(deltaT, interval*dt) <= 1e-9)
     {
-        const double steps = runTime.deltaTValue()/dem.time_step();
-        if (std::llround(steps) < 1 || relativeDifference(steps, std::llround(steps)) > 1e-9)
-        {
-            const long below = std::max(1L, static_cast<long>(std::floor(steps)));
-            FatalErrorInFunction
-                << "system/controlDict: deltaT = " << runTime.deltaTValue()
-                << " s is not a whole number of DEM steps of " << dem.time_step()
-                << " s (the DEM script's timestep; " << steps << " of them): use deltaT = "
-                << below << " x " << dem.time_step() << " = " << below*dem.time_step()
-                << " s, or a DEM timestep of deltaT / " << below << " = "
-                << runTime.deltaTValue()/below << " s" << exit(FatalError);
-        }
         return;
     }
-    const double demInterval = config.coupling_interval*dem.time_step();
-    if (relativeDifference(runTime.deltaTValue(), demInterval) > 1e-9)
+    if (config.coupling_interval == 0)
     {
+        const long below = std::max(1L, static_cast<long>(std::floor(deltaT/dt)));
         FatalErrorInFunction
-            << "system/controlDict: deltaT = " << runTime.deltaTValue()
-            << " s must equal dem.coupling_interval x DEM timestep = "
-            << config.coupling_interval << " x " << dem.time_step() << " = "
-            << demInterval << " s (" << config.file.c_str()
-            << "); the coupling interval must divide the gas step evenly"
+            << "system/controlDict: deltaT = " << deltaT << " s is not a whole number of DEM"
+            << " steps of " << dt << " s (the DEM script's timestep; " << deltaT/dt
+            << " of them): use deltaT = " << below << " x " << dt << " = " << below*dt
+            << " s, or a DEM timestep of deltaT / " << below << " = " << deltaT/below << " s"
             << exit(FatalError);
     }
+    FatalErrorInFunction
+        << "system/controlDict: deltaT = " << deltaT
+        << " s must equal dem.coupling_interval x DEM timestep = "
+        << config.coupling_interval << " x " << dt << " = " << interval*dt << " s ("
+        << config.file.c_str() << "); the coupling interval must divide the gas step evenly"
+        << exit(FatalError);
 }
 
 

@@ -45,6 +45,7 @@ import yaml
 
 import tfdem.run
 from tfdem import SOURCE_DIR, TUTORIALS
+from tfdem.physics import wen_yu_minimum_fluidization
 
 ONE_LAYER = "one_layer"
 CELL_DIAMETERS = 4.0          # gas cell / largest diameter: seed 000's uniform bed (1 cm, 2.5 mm)
@@ -241,8 +242,8 @@ def _reduced(a, b):
 
 
 def scene_numbers(bed, stiffness, wall_stiffness, cell, path="bed.yaml"):
-    """The scene check (tfdem-scene-check --json) of the smallest spheres' contacts: U_mf, t_c,
-    damping and the DEM step rule for the pair and the wall contact. The coupling section's
+    """The scene check (tfdem-scene-check --json) of the smallest spheres' contacts: t_c,
+    damping and the DEM step rule for the pair and the wall contact, the drag response time. The coupling section's
     names (transfer, drag_law) are checked there, against the core's own lists."""
     p = bed["particles"]
     with tempfile.TemporaryDirectory() as scratch:
@@ -254,8 +255,7 @@ def scene_numbers(bed, stiffness, wall_stiffness, cell, path="bed.yaml"):
                             "dem": {"script": "in.bed", "coupling_interval": 1},
                             "coupling": {"transfer": bed["coupling"]["transfer"],
                                          "drag_law": bed["coupling"]["drag_law"]}}, f)
-        velocity = max([bed["inflow"]["velocity"]] + [j["velocity"] for j in bed["inflow"]["jets"]])
-        args = ["tfdem-scene-check", config, "--gas-velocity", repr(velocity), "--cell-size", repr(cell),
+        args = ["tfdem-scene-check", config, "--gas-velocity", repr(_fastest_inflow(bed)), "--cell-size", repr(cell),
                 "--kn", repr(stiffness), "--en", repr(p["restitution"]), "--wall-kn", repr(wall_stiffness),
                 "--wall-en", repr(p["wall"]["restitution"]), "--json"]
         done = subprocess.run(args, capture_output=True, text=True, env=tfdem.run.environment())
@@ -263,13 +263,21 @@ def scene_numbers(bed, stiffness, wall_stiffness, cell, path="bed.yaml"):
         # the core names the key in the scratch coupling.yaml (with its line): name bed.yaml's
         message = re.sub(re.escape(config) + r"(:\d+:\d+)?", path, done.stderr.strip().replace("tfdem-scene-check: ", ""))
         raise BedError(message)
-    return json.loads(done.stdout)
+    numbers = json.loads(done.stdout)
+    errors = [f"{f['topic']}: {f['text']}" for f in numbers["findings"] if f["level"] == "error"]
+    if errors:
+        raise BedError(f"{path}: the scene check finds the bed unsound: {'; '.join(errors)}")
+    return numbers
 
 
-def _wen_yu(bed, d, path):
-    """U_mf of size d by Wen and Yu, from the scene check's own formula (one source)."""
-    one = {**bed, "particles": {**bed["particles"], "sizes": [{"diameter": d, "number": 1}]}}
-    return scene_numbers(one, 800.0, 800.0, CELL_DIAMETERS * d, path)["minimum_fluidization"]
+def _fastest_inflow(bed):
+    """The largest superficial inflow speed: the uniform inflow's or a jet's (m/s)."""
+    return max([bed["inflow"]["velocity"]] + [j["velocity"] for j in bed["inflow"]["jets"]])
+
+
+def _closed_bottom(bed):
+    """Whether the bottom outside the jets is a wall (jets and no background inflow)."""
+    return bool(bed["inflow"]["jets"]) and bed["inflow"]["velocity"] == 0.0
 
 
 def derive(bed, path="bed.yaml"):
@@ -319,7 +327,7 @@ def derive(bed, path="bed.yaml"):
     out["jets"] = jets
 
     rho = p["density"]
-    u_mf = _wen_yu(bed, d_small, path)
+    u_mf = wen_yu_minimum_fluidization(d_small, p["density"], bed["gas"]["density"], bed["gas"]["viscosity"], 9.81)
     out["u_mf"] = u_mf
     m_small = _mass(d_small, rho)
     stiffness = p["stiffness"] or _reduced(m_small, m_small) * (u_mf / (IMPACT_OVERLAP * d_small)) ** 2
@@ -333,8 +341,7 @@ def derive(bed, path="bed.yaml"):
     scene = scene_numbers(bed, stiffness, wall_stiffness, dx, path)
     pair, wall = scene["pair"], scene["wall"]
     longest_dem_step = min(pair["recommended_time_step"], wall["recommended_time_step"])
-    velocities = [inflow["velocity"]] + [j["velocity"] for j in jets]
-    bound = min(GAS_STEP, INFLOW_COURANT * dy / max(velocities), 0.5 * scene["dense_drag_time"])
+    bound = min(GAS_STEP, INFLOW_COURANT * dy / _fastest_inflow(bed), 0.5 * scene["dense_drag_time"])
     gas_step = _round_down(bound)
     interval = max(1, int(math.ceil(gas_step / longest_dem_step - 1e-9)))
     dt = gas_step / interval
@@ -384,8 +391,8 @@ def derive(bed, path="bed.yaml"):
         note(f"plate: Darcy d = {out['plate_darcy']:.4g} 1/m^2 over the cell row below it: {fraction:g} of the bed's "
              f"weight per area ({weight_per_area:.4g} Pa) at U_mf")
     out["scene"] = scene
-    u_ratio = max(velocities) / u_mf
-    note(f"inflow {max(velocities):g} m/s = {u_ratio:.3g} U_mf (Wen-Yu, smallest spheres); terminal velocity "
+    u_ratio = _fastest_inflow(bed) / u_mf
+    note(f"inflow {_fastest_inflow(bed):g} m/s = {u_ratio:.3g} U_mf (Wen-Yu, smallest spheres); terminal velocity "
          f"{scene['terminal_velocity']:.3g} m/s")
     return out
 
@@ -418,7 +425,7 @@ def block_mesh(bed, dv):
     blocks, faces = [], {"inlet": [], "outlet": [], "walls": [], "frontAndBack": []}
     for jet in dv["jets"]:
         faces[jet["name"]] = []
-    closed_bottom = bool(dv["jets"]) and bed["inflow"]["velocity"] == 0.0
+    closed_bottom = _closed_bottom(bed)
     if closed_bottom:
         faces["bottom"] = faces.pop("inlet")
     for j in range(len(ys) - 1):
@@ -457,8 +464,7 @@ def block_mesh(bed, dv):
 
 
 def _patches(bed, dv):
-    closed_bottom = bool(dv["jets"]) and bed["inflow"]["velocity"] == 0.0
-    names = ["bottom" if closed_bottom else "inlet"] + [j["name"] for j in dv["jets"]] + ["outlet", "walls"]
+    names = ["bottom" if _closed_bottom(bed) else "inlet"] + [j["name"] for j in dv["jets"]] + ["outlet", "walls"]
     return names + (["frontAndBack"] if dv["nz"] == 1 else [])
 
 
@@ -609,7 +615,7 @@ def dem_script(bed, dv):
                 rows.append(entry(min(a, b), max(a, b)))
         return " ".join(rows)
 
-    def is_wall(a, b):
+    def is_wall(a, b):  # a <= b: the wall type is the last
         return b == wall_type
 
     def eta(a, b):

@@ -13,8 +13,10 @@ PLANE_SLAB diameters deep, where spheres cannot pass one another, and every cent
 moved onto the mid-plane (overlaps of at most d - sqrt(d^2 - ((PLANE_SLAB - 1) d)^2), 0.13 %
 of d).
 """
+import argparse
 import os
 import re
+import sys
 
 import yaml
 
@@ -171,8 +173,6 @@ def pack_case(case, ranks=1, runner=tfdem.run.run):
 
 
 def main(argv=None):
-    import argparse
-    import sys
     parser = argparse.ArgumentParser(prog="tfdem pack", description="Pour a case's bed (its packing.yaml) into "
                                      "the data file its DEM script reads.")
     parser.add_argument("case", nargs="?", default=".")
