@@ -5,10 +5,16 @@ error against a reference point, a Pareto plot per metric, a CSV and a README ta
     pareto.py run SWEEP.yaml [--end-time T] [--jobs N] [--root DIR] [--points a,b]
     pareto.py report SWEEP.yaml [--end-time T] [--root DIR] [--cost wall|cpu]
 
-A sweep (bench/pareto/<case>.yaml) names a tutorial, the simulated time, the averaging window
-and its points: each point changes only what it lists (see POINT_KEYS). Points are runs of
-tfdem.batch: resumable, skipped when done, `--jobs` side by side (default 1: wall times are
-only comparable when nothing else runs; with 2 the processor time is the fairer cost).
+A sweep (bench/pareto/<case>.yaml, or a user's own file) names its template, the simulated
+time, the averaging window and its points: each point changes only what it lists (see
+POINT_KEYS). The template is a tutorial's name or the path of any bed case (one `tfdem new`
+wrote, say; relative to the sweep file); `packing` (optional) names the packed bed to start
+from and the script that makes it, relative to tutorials/, else the template's own data file
+(`tfdem pack` pours it); `dp_height` (optional) the height of Delta p's upper row above the
+bed's bottom row (default 20 cm, or the column when shorter: tfdem.bed). Points are runs of
+tfdem.batch (tfdem.bedstats.BedRun): resumable, skipped when done, `--jobs` side by side
+(default 1: wall times are only comparable when nothing else runs; with 2 the processor time
+is the fairer cost). Runs and the report go beside the sweep file, in a folder of its name.
 
 Metrics over the window, each with its standard error from batch means: mean of Delta p at
 20 cm, its standard deviation in the bed's band (50 ms means) and above it (the gas-step
@@ -22,21 +28,21 @@ import argparse
 import csv
 import difflib
 import os
-import shutil
 import sys
 
 import yaml
 
 from tfdem import TUTORIALS
-from tfdem.batch import BatchError, CaseRun, run_batch
+from tfdem.batch import BatchError, run_batch
 from tfdem.accuracy import METRICS, map_error, pareto_front, scalar_error, scalar_metrics
-from tfdem.bed import BedOutputs, write_bed_probes
-from tfdem.case import Case, CaseError, set_sub_dict_entry
-from tfdem.run import DEFAULT_GAS_LAYOUT, RunError, check_gas_layout, command, prepare_gas, run
+from tfdem.bed import BedOutputs
+from tfdem.bedstats import BedRun
+from tfdem.case import CaseError, set_sub_dict_entry
+from tfdem.run import DEFAULT_GAS_LAYOUT, RunError, check_gas_layout, run
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-SWEEP_KEYS = ("template", "packing", "end_time", "window", "batch", "band", "field_interval", "statistics_interval",
-              "reference", "points")
+SWEEP_KEYS = ("template", "packing", "dp_height", "end_time", "window", "batch", "band", "field_interval",
+              "statistics_interval", "reference", "points")
+OPTIONAL_SWEEP_KEYS = ("packing", "dp_height")
 POINT_KEYS = ("dem_time_step", "gas_time_step", "refine", "coupling", "fv_solution", "ranks", "gas")
 
 
@@ -60,7 +66,7 @@ def load_sweep(path):
         if key not in SWEEP_KEYS:
             raise _unknown(path, "", key, SWEEP_KEYS)
     for key in SWEEP_KEYS:
-        if key not in sweep:
+        if key not in sweep and key not in OPTIONAL_SWEEP_KEYS:
             raise SweepError(f"{path}: missing '{key}'")
     for name, spec in sweep["points"].items():
         for key in spec or {}:
@@ -71,7 +77,22 @@ def load_sweep(path):
         raise SweepError(f"{path}: reference '{sweep['reference']}' is not one of the points "
                          f"({', '.join(sweep['points'])})")
     sweep["path"] = os.path.abspath(path)
+    sweep["template_path"] = template_path(sweep)
     return sweep
+
+
+def template_path(sweep):
+    """The template case's folder: a tutorial's name, or a path (absolute, or relative to the
+    sweep file)."""
+    name = sweep["template"]
+    if os.sep in name or name.startswith("."):
+        folder = os.path.join(os.path.dirname(sweep["path"]), name)
+    else:
+        folder = os.path.join(TUTORIALS, name)
+    if not os.path.isfile(os.path.join(folder, "coupling.yaml")):
+        raise SweepError(f"{sweep['path']}: template '{name}': {folder} is not a case (no coupling.yaml); give a "
+                         f"tutorial's name or the path of a case")
+    return os.path.abspath(folder)
 
 
 def _check_point(path, name, spec):
@@ -95,56 +116,31 @@ def _check_point(path, name, spec):
         raise bad("refine", "[x, y], two whole numbers >= 1")
 
 
-class Point(CaseRun):
-    """One point of the sweep: the tutorial with the point's changes, under root/runs/<name>."""
+class Point(BedRun):
+    """One point of the sweep: the template with the point's changes, under root/runs/<name>."""
 
     def __init__(self, name, spec, sweep, root):
-        super().__init__(name, os.path.join(root, "runs", name))
-        self.spec, self.sweep = spec or {}, sweep
-        self.template = os.path.join(TUTORIALS, sweep["template"])
-        self.ranks = int(self.spec.get("ranks", 1))
-        self.gas = self.spec.get("gas", DEFAULT_GAS_LAYOUT)
+        spec = spec or {}
+        super().__init__(name, os.path.join(root, "runs", name), sweep["template_path"], int(spec.get("ranks", 1)),
+                         spec.get("gas", DEFAULT_GAS_LAYOUT), sweep.get("dp_height"), sweep["field_interval"],
+                         sweep["statistics_interval"])
+        self.spec, self.sweep = spec, sweep
 
-    def command(self):
-        return command([self.solver], self.ranks, self.gas)
+    def packed_bed(self):
+        return _packing(self.sweep) or super().packed_bed()
 
-    def complete_fields(self):
-        # a split point restarts from its beginning (its checkpoints are per processor)
-        return ("no-resume",) if self.ranks > 1 and self.gas == "split" else ("tfdem.checkpoint",)
-
-    def prepare(self, end_time):
-        template = Case(self.template)
-        case = template.copy_to(self.case.path)
-        self.set_status(state="prepared", end_time=end_time)
-        case.set_control(endTime=end_time, writeInterval=self.write_interval(end_time), startFrom="startTime",
-                         writePrecision=17)
+    def modify(self, case):
         self._time_steps(case)
-        refine = self.spec.get("refine", [1, 1])
-        for axis, factor in enumerate(refine):
+        for axis, factor in enumerate(self.spec.get("refine", [1, 1])):
             if factor != 1:
                 case.scale_cells(axis, factor)
         for key, value in self.spec.get("coupling", {}).items():
             case.set_coupling(key, value)
         for key, value in self.spec.get("fv_solution", {}).items():
             set_sub_dict_entry(case.file("system", "fvSolution"), key, value)
-        case.set_coupling("output.statistics_interval", self.sweep["statistics_interval"])
-        shutil.copy(self._packing(), case.file(case.dem_command("read_data")[1]))
-        run(["blockMesh"], case.path, "log.blockMesh")
-        write_bed_probes(case, self.sweep["field_interval"], self.sweep["statistics_interval"])
-        prepare_gas(case.path, self.ranks, self.gas)
 
     def write_interval(self, end_time):
         return min(1.0, end_time)
-
-    def _packing(self):
-        """The initial packed bed (sweep `packing`: its file and the script that makes it, both
-        relative to tutorials/), made once."""
-        packing = self.sweep["packing"]
-        path = os.path.join(TUTORIALS, packing["file"])
-        if not os.path.isfile(path):
-            maker = os.path.join(TUTORIALS, packing["make"])
-            run([maker], os.path.dirname(maker), "log.pareto_packing")
-        return path
 
     def _time_steps(self, case):
         """DEM step and gas step of the point (tfdem.case.Case.set_time_steps)."""
@@ -152,6 +148,19 @@ class Point(CaseRun):
             case.set_time_steps(self.spec.get("dem_time_step"), self.spec.get("gas_time_step"))
         except CaseError as e:
             raise SweepError(f"point {self.name}: {e}") from None
+
+
+def _packing(sweep):
+    """The packed bed a sweep starts from (its `packing`: the file and the script that makes
+    it, both relative to tutorials/, made once), or None: the template's own data file."""
+    packing = sweep.get("packing")
+    if not packing:
+        return None
+    path = os.path.join(TUTORIALS, packing["file"])
+    if not os.path.isfile(path):
+        maker = os.path.join(TUTORIALS, packing["make"])
+        run([maker], os.path.dirname(maker), "log.pareto_packing")
+    return path
 
 
 def points_of(sweep, root, names=()):
@@ -256,7 +265,8 @@ def main(argv=None):
     parser.add_argument("--end-time", type=float, default=None, help="simulated seconds per point (default: the sweep's; "
                         "the window and batches scale with it)")
     parser.add_argument("--jobs", type=int, default=1, help="points side by side (default 1)")
-    parser.add_argument("--root", default=None, help="folder for runs/ and report/ (default bench/pareto/<sweep name>)")
+    parser.add_argument("--root", default=None, help="folder for runs/ and report/ (default: beside the sweep file, "
+                        "a folder of its name)")
     parser.add_argument("--points", default="", help="comma-separated point names to run (default: all); the "
                         "report covers every finished point")
     parser.add_argument("--cost", choices=("wall", "cpu"), default="wall",
@@ -266,7 +276,7 @@ def main(argv=None):
     try:
         sweep = load_sweep(args.sweep)
         end_time = args.end_time or sweep["end_time"]
-        root = args.root or os.path.join(HERE, os.path.splitext(os.path.basename(args.sweep))[0])
+        root = args.root or os.path.splitext(os.path.abspath(args.sweep))[0]
         if args.command == "run":
             points = points_of(sweep, root, [n for n in args.points.split(",") if n])
             return 0 if run_batch(points, end_time, args.jobs) else 1

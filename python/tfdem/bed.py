@@ -1,7 +1,8 @@
 """A fluidized bed's measured signals, the same for every run that compares beds (the seed 000
-study, the speed-against-error sweeps): the solids fraction at every cell centre, p on the
-bottom row of cells and on the row 20 cm above it (Delta p at 20 cm, seed 000 Fig. 3), and
-the coupler's particle statistics.
+study, the speed-against-error sweeps, `tfdem stats`): the solids fraction at every cell
+centre, p on the bed's bottom row of cells (the first above a distributor plate's cell zone)
+and on the row DP_HEIGHT above it (Delta p at 20 cm, seed 000 Fig. 3; another height for
+another column), and the coupler's particle statistics.
 
 write_bed_probes() adds the function objects to a case's controlDict; BedOutputs reads what
 they wrote, joined over resumes, as arrays.
@@ -11,6 +12,7 @@ import re
 
 import numpy
 
+from tfdem.case import CaseError
 from tfdem.outputs import joined_series, particle_statistics
 
 DP_HEIGHT = 0.2  # m: Delta p between the bottom row of cells and the row this far above it
@@ -20,16 +22,48 @@ COUPLED_FIELDS = ("voidFraction", "contactForceByWeight", "dragForceByWeight")
 TFM_FIELDS = ("alpha.particles",)
 
 
-def write_bed_probes(case, field_interval, pressure_interval, tfm=False):
+PLATE_ZONE = "distributor"  # the cell zone of a distributor plate's porous rows (tfdem new)
+
+
+def _row_span(case):
+    """(bottom, highest): the heights of the bed's bottom row of cell centres (the first above
+    the plate's cell zone, when the case has one) and of the column's highest row."""
+    grid = case.grid()
+    try:
+        floor = case.block_bounds(PLATE_ZONE)[1][1]
+    except CaseError:
+        floor = grid.origin[1]
+    return floor + 0.5 * grid.spacing[1], grid.origin[1] + (grid.counts[1] - 0.5) * grid.spacing[1]
+
+
+def pressure_rows(case, dp_height=DP_HEIGHT):
+    """(bottom, top): the heights of the two rows of cell centres Delta p is taken between,
+    the bed's bottom row and the row dp_height above it. CaseError when that row is outside
+    the mesh."""
+    bottom, highest = _row_span(case)
+    if not 0 < dp_height <= highest - bottom + 1e-9:
+        raise CaseError(f"{case.path}: a Delta p height of {dp_height:g} m puts its upper row outside the column "
+                        f"(the bed's bottom row is at y = {bottom:g} m, the highest at {highest:g} m); give a height "
+                        f"above 0 and up to {highest - bottom:g} m")
+    return bottom, bottom + dp_height
+
+
+def default_dp_height(case):
+    """DP_HEIGHT (seed 000's 20 cm) when the column has room for it, else the column's whole
+    height above the bed's bottom row (the whole bed's Delta p)."""
+    bottom, highest = _row_span(case)
+    return min(DP_HEIGHT, highest - bottom)
+
+
+def write_bed_probes(case, field_interval, pressure_interval, tfm=False, dp_height=DP_HEIGHT):
     """Replace the functions of `case`'s controlDict by the bed probes: every field of the maps
-    at every cell centre every field_interval, p on the two rows every pressure_interval (s).
-    The coupled solver samples every so many gas steps; twoPhaseEulerFoam (adjustable step)
-    at run times."""
+    at every cell centre every field_interval, p on the two rows (pressure_rows) every
+    pressure_interval (s). The coupled solver samples every so many gas steps;
+    twoPhaseEulerFoam (adjustable step) at run times."""
     grid = case.grid()
     centres = grid.centres()
     z = grid.origin[2] + 0.5 * grid.spacing[2]
-    bottom = grid.origin[1] + 0.5 * grid.spacing[1]
-    rows = [(x, y) for y in (bottom, bottom + DP_HEIGHT) for x, _, _ in centres[:grid.counts[0]]]
+    rows = [(x, y) for y in pressure_rows(case, dp_height) for x, _, _ in centres[:grid.counts[0]]]
     fields = TFM_FIELDS if tfm else COUPLED_FIELDS
     if tfm:
         control = lambda dt: f"writeControl adjustableRunTime; writeInterval {dt:.10g};"
@@ -40,7 +74,7 @@ def write_bed_probes(case, field_interval, pressure_interval, tfm=False):
     row_points = "\n".join(f"            ({x:.10g} {y:.10g} {z:.10g})" for x, y in rows)
     block = (
         "functions\n{\n"
-        "    // tfdem.bed: every cell centre (maps) and two rows of cells (Delta p at 20 cm)\n"
+        f"    // tfdem.bed: every cell centre (maps) and two rows of cells {dp_height:g} m apart (Delta p)\n"
         f"    {FIELDS}\n    {{\n        type probes; libs (\"libsampling.so\");\n"
         f"        {control(field_interval)}\n        fields ({' '.join(fields)});\n"
         f"        probeLocations\n        (\n{points}\n        );\n    }}\n"
@@ -99,9 +133,9 @@ class BedOutputs:
 
 
 def row_pressure_drop(p_rows, nx):
-    """Delta p at 20 cm (seed 000 Fig. 3) from the pressure probes of write_bed_probes, one
+    """Delta p (at 20 cm: seed 000 Fig. 3) from the pressure probes of write_bed_probes, one
     sample a row of p_rows: the first nx values on the bottom row of cells, the next nx on the
-    row DP_HEIGHT above; the bottom row's mean minus the upper row's."""
+    upper row; the bottom row's mean minus the upper row's."""
     p_rows = numpy.asarray(p_rows, dtype=float)
     if p_rows.ndim != 2 or p_rows.shape[1] != 2 * nx:
         raise ValueError(f"pressure samples of shape {p_rows.shape}: expected (samples, {2 * nx}), two rows of {nx}")
