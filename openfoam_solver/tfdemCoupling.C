@@ -419,7 +419,8 @@ void Foam::TfdemCoupling::report() const
     report_.report
     (
         core_->totals(),
-        tfdem::transfer_method_names()[int(config_.transfer.method)]
+        tfdem::transfer_method_names()[int(config_.transfer.method)],
+        config_.void_fraction.void_fraction_floor
     );
     forceRecord_.report(*dem_);
 }

@@ -213,6 +213,8 @@ void void_fraction_from_solid_volume(const std::vector<double> &cell_volume, dou
   if (!(floor >= 0.0 && floor < 1.0))
     throw std::invalid_argument("gas fraction floor must be in [0, 1), got " + std::to_string(floor));
   out.floored_cells = 0;
+  out.floored_solid_volume = 0.0;
+  out.removed_solid_volume = 0.0;
   out.lowest_unfloored = 1.0;
   out.lowest_cell = -1;
   out.void_fraction.resize(cell_volume.size());
@@ -222,7 +224,11 @@ void void_fraction_from_solid_volume(const std::vector<double> &cell_volume, dou
       out.lowest_unfloored = eps;
       out.lowest_cell = static_cast<int>(c);
     }
-    if (eps < floor) ++out.floored_cells;
+    if (eps < floor) {
+      ++out.floored_cells;
+      out.floored_solid_volume += out.solid_volume[c];
+      out.removed_solid_volume += out.solid_volume[c] - (1.0 - floor) * cell_volume[c];
+    }
     out.void_fraction[c] = std::max(eps, floor);
   }
 }

@@ -129,6 +129,25 @@ TEST(VoidFraction, CentroidSingleParticle) {
   EXPECT_EQ(f.void_fraction[g.flat(0, 0, 0)], 1.0);
 }
 
+// The floor's account, by hand: three 8 mm spheres in one 1 cm cube (centroid) fill it to
+// eps = 1 - 3 V_p / V_cell = 0.196 < 0.3; the floored cell holds 3 V_p of solids, and the map
+// leaves out 3 V_p - (1 - 0.3) V_cell of them; the cell beside, with one sphere, is not floored.
+TEST(VoidFraction, FloorCountsTheSolidsItTouchesAndLeavesOut) {
+  const CartesianGrid g = grid(0.01, 0.01, 0.01, 2, 1, 1);
+  Cloud c;
+  for (const double y : {0.003, 0.005, 0.007}) c.add(0.005, y, 0.005, 0.008);
+  c.add(0.015, 0.005, 0.005, 0.008);
+  const auto vol = cell_volumes(g, false, 0.0);
+  const double vp = M_PI * 0.008 * 0.008 * 0.008 / 6.0;
+  const VoidFraction f = map_void_fraction(compute_weights(g, c.view(), options(VoidFractionMethod::Centroid)), c.view(), vol, 0.3);
+  EXPECT_EQ(f.floored_cells, 1u);
+  EXPECT_DOUBLE_EQ(f.void_fraction[g.flat(0, 0, 0)], 0.3);
+  EXPECT_NEAR(f.lowest_unfloored, 1.0 - 3 * vp / 1e-6, 1e-14);
+  EXPECT_NEAR(f.floored_solid_volume, 3 * vp, 1e-20);
+  EXPECT_NEAR(f.removed_solid_volume, 3 * vp - 0.7e-6, 1e-20);
+  EXPECT_NEAR(f.void_fraction[g.flat(1, 0, 0)], 1.0 - vp / 1e-6, 1e-14);
+}
+
 // Seed 001 eq. 36-37: a cube inside one cell puts all of V_p there; a 2-D cube centred on a
 // corner of four cells gives each a quarter.
 TEST(VoidFraction, PorousCubeSharesAreOverlapFractions) {

@@ -71,6 +71,10 @@ struct VoidFraction {
   std::vector<double> solid_volume;  // sum_i w_ic V_i (m^3)
   std::vector<double> void_fraction;  // max(1 - solid_volume / V_cell, floor)
   std::size_t floored_cells = 0;     // cells where the floor replaced a lower value
+  double floored_solid_volume = 0.0;  // sum of solid_volume over those cells (m^3): the
+                                      // particles whose drag sees eps = floor
+  double removed_solid_volume = 0.0;  // sum over them of solid_volume - (1 - floor) V_cell:
+                                      // the solids the floored map leaves out (m^3)
   double lowest_unfloored = 1.0;     // smallest 1 - solid_volume / V_cell before the floor
   int lowest_cell = -1;              // the cell holding it (-1 when every cell is empty)
 };

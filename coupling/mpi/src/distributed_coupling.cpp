@@ -77,12 +77,18 @@ void DistributedCoupling::map(const ParticleView &particles) {
   totals_.particle_volume = 0.0;
   for (std::size_t i = 0; i < particles.count; ++i) totals_.particle_volume += sphere_volume(particles.diameter[i]);
   totals_.mapped_volume = 0.0;
-  if (adds_cell_totals())
+  double floored_volumes[2] = {0.0, 0.0};
+  if (adds_cell_totals()) {
     for (std::size_t c = 0; c < owned_volume_.size(); ++c) totals_.mapped_volume += gas_.solid_volume[c];
-  double volumes[2] = {totals_.particle_volume, totals_.mapped_volume};
-  sum_over_ranks(volumes, 2);
+    floored_volumes[0] = gas_.floored_solid_volume;
+    floored_volumes[1] = gas_.removed_solid_volume;
+  }
+  double volumes[4] = {totals_.particle_volume, totals_.mapped_volume, floored_volumes[0], floored_volumes[1]};
+  sum_over_ranks(volumes, 4);
   totals_.particle_volume = volumes[0];
   totals_.mapped_volume = volumes[1];
+  totals_.floored_solid_volume = volumes[2];
+  totals_.removed_solid_volume = volumes[3];
   unsigned long floored = adds_cell_totals() ? gas_.floored_cells : 0;
   MPI_Allreduce(MPI_IN_PLACE, &floored, 1, MPI_UNSIGNED_LONG, MPI_SUM, comm_);
   totals_.floored_cells = floored;

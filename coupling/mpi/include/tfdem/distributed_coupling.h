@@ -33,6 +33,8 @@ namespace tfdem {
 // Totals over all ranks from the last step.
 struct CouplingTotals {
   std::size_t floored_cells = 0;     // cells where the gas-fraction floor was used
+  double floored_solid_volume = 0.0;  // the solids in them (VoidFraction's)
+  double removed_solid_volume = 0.0;  // the solids the floored map leaves out
   double lowest_unfloored = 1.0;     // smallest eps before the floor
   int lowest_cell = -1;              // global grid cell holding it (-1 when all cells are empty)
   double particle_volume = 0.0;      // sum_i V_i
