@@ -126,7 +126,9 @@ class CaseRun:
         segment = int(logs[-1].rsplit(".", 1)[1]) + 1 if logs else 1
         log = self.case.file(f"log.solver.{segment}")
         with open(log, "w") as out:
-            proc = subprocess.Popen(self.command(), cwd=self.case.path, env=environment(), stdout=out,
+            # PWD as the folder: OpenFOAM warns when it is not the working directory
+            proc = subprocess.Popen(self.command(), cwd=self.case.path, env=dict(environment(), PWD=self.case.path),
+                                    stdout=out,
                                     stderr=subprocess.STDOUT, start_new_session=True)
         _keep_niceness(proc.pid)
         self.set_status(state="running", resumed_from=resume, pid=proc.pid)

@@ -28,7 +28,7 @@ import numpy
 from tfdem.accuracy import scalar_metrics
 from tfdem.batch import BatchError, CaseRun, run_batch
 from tfdem.bed import PRESSURE, BedOutputs, default_dp_height, pressure_rows, write_bed_probes
-from tfdem.case import Case, CaseError, read_data_file
+from tfdem.case import Case, CaseError
 from tfdem.outputs import probe_locations
 from tfdem.run import DEFAULT_GAS_LAYOUT, RunError, check_gas_layout, command, prepare_gas, run
 from tfdem.stats import integrated_autocorrelation_time
@@ -63,7 +63,7 @@ class BedRun(CaseRun):
     def packed_bed(self):
         """The data file the run starts from: the template's own (its DEM script's read_data)."""
         template = Case(self.template)
-        packed = template.file(template.dem_command("read_data")[1])
+        packed = template.file(template.particles_file())
         if not os.path.isfile(packed):
             raise CaseError(f"{packed}: no packed bed to start from; pour it first: tfdem pack {template.path}")
         return packed
@@ -71,7 +71,7 @@ class BedRun(CaseRun):
     def prepare(self, end_time):
         packed = self.packed_bed()
         case = Case(self.template).copy_to(self.case.path)
-        data = case.dem_command("read_data")[1]
+        data = case.particles_file()
         self.set_status(state="prepared", end_time=end_time)
         case.set_control(endTime=end_time, writeInterval=self.write_interval(end_time), startFrom="startTime",
                          writePrecision=17)
@@ -96,7 +96,7 @@ class BedRun(CaseRun):
 def bed_weight_per_area(case):
     """The packed bed's buoyant weight per area of the column's cross-section (Pa), from the
     data file the run read (masses from the per-atom density and diameter)."""
-    atoms = read_data_file(case.file(case.dem_command("read_data")[1]))
+    atoms = case.particles()
     rho_gas, _ = case.gas()
     g = math.sqrt(sum(c * c for c in case.gravity()))
     lo, hi = case.mesh_bounds()

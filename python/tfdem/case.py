@@ -397,7 +397,12 @@ class Case:
 
     # DEM -----------------------------------------------------------------------------------
     def dem_script(self):
-        return self.file(self.coupling_value("dem.script"))
+        script = self.coupling_value("dem.script")
+        if script is None:
+            raise CaseError(f"{self.file('coupling.yaml')}: no dem.script"
+                            + (": the hard-sphere engine (dem.engine: hard_sphere) runs without a LIGGGHTS script"
+                               if self.hard_sphere() else ""))
+        return self.file(script)
 
     def dem(self):
         """The case's DEM script (coupling.yaml dem.script) as a DemScript."""
@@ -418,7 +423,17 @@ class Case:
     def set_time_steps(self, dem=None, gas=None):
         """DEM step (the DEM script's `timestep`) and gas step (controlDict deltaT), each kept
         when None; the coupling interval (dem.coupling_interval, when the case states it) is
-        their ratio, which must be a whole number."""
+        their ratio, which must be a whole number. The hard-sphere engine has no DEM step: only
+        the gas step is set."""
+        if self.hard_sphere():
+            if dem is not None:
+                raise CaseError(f"{self.path}: a DEM step of {dem:g} s for the hard-sphere engine, which has none "
+                                "(its flight between flow steps is event driven): give the gas step only")
+            if gas is not None:
+                if not float(gas) > 0:
+                    raise CaseError(f"{self.path}: gas step {gas:g} s must be positive")
+                self.set_control(deltaT=f"{float(gas):.12g}")
+            return
         dem = self.dem_time_step() if dem is None else float(dem)
         gas = self.delta_t() if gas is None else float(gas)
         if not (dem > 0 and gas > 0):
@@ -437,11 +452,21 @@ class Case:
             self.set_coupling("dem.coupling_interval", int(round(interval)))
         self.set_control(deltaT=f"{gas:.12g}")
 
+    def hard_sphere(self):
+        """Whether coupling.yaml runs the hard-sphere engine (dem.engine: hard_sphere)."""
+        return self.coupling_value("dem.engine", "liggghts") == "hard_sphere"
+
+    def particles_file(self):
+        """The data file the particle engine starts from, relative to the case: the DEM
+        script's read_data, or the hard-sphere engine's dem.particles."""
+        if self.hard_sphere():
+            return self.coupling_value("dem.particles")
+        return self.dem_command("read_data")[1]
+
     def particles(self, data_file=None):
-        """Particles of the DEM script's read_data file (atom style granular): dict of lists
-        id, type, diameter, density, x, y, z."""
-        path = data_file or self.file(self.dem_command("read_data")[1])
-        return read_data_file(path)
+        """Particles of the engine's data file (atom style granular): dict of lists id, type,
+        diameter, density, x, y, z."""
+        return read_data_file(data_file or self.file(self.particles_file()))
 
     def particle_count(self):
         return len(self.particles()["id"])

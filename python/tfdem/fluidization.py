@@ -228,11 +228,20 @@ def packing_command(case, schedule):
     return args
 
 
+def require_soft_spheres(case):
+    """The curve reads the DEM script's height and wall-force outputs: refuse a hard-sphere case."""
+    if case.hard_sphere():
+        raise CaseError(f"{case.file('coupling.yaml')}: dem.engine: hard_sphere; the fluidization curve reads the "
+                        "DEM script's height and wall-force outputs (fix height_out, forces_out): run it with the "
+                        "soft spheres (dem.engine: liggghts; in bed.yaml leave dem out)")
+
+
 def prepare_run(source, dest, schedule, runner=tfdem.run.run, set_end_time=False):
     """Copy the case from source to dest (unless they are the same), pack its bed (when the
     schedule has `packing`), write 0/U and run blockMesh and tfdemFoam there via
     runner(args, cwd, log_name)."""
     case = Case(source)
+    require_soft_spheres(case)
     if os.path.abspath(source) != os.path.abspath(dest):
         case = case.copy_to(dest)
     if schedule.packing is not None:
@@ -251,6 +260,7 @@ class Bed:
     def __init__(self, case):
         self.case = case if isinstance(case, Case) else Case(case)
         c = self.case
+        require_soft_spheres(c)
         self.d, self.rho_p = c.particle_properties()
         self.rho_g, self.mu = c.gas()
         self.g = c.gravity_magnitude()

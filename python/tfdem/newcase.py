@@ -5,7 +5,7 @@
       width: 0.04
       height: 0.12
       depth: one_layer         # one particle diameter, seed 000's 2-D rule; or a depth in m
-    particles:                 # one density, one or two sizes
+    particles:                 # one density, one to MAX_SIZES sizes
       density: 2500            # kg/m^3
       sizes:                   # each with `number`, or each with `mass_fraction` and `count`
         - {diameter: 0.001, number: 800}
@@ -21,6 +21,9 @@
       # jets: [{centre: 0.075, width: 0.01, velocity: 39}]
     run: {end_time: 1.0, write_interval: 0.1}  # s; write_interval: checkpoints and particle files
     coupling: {transfer: averaged, drag_law: ergun_wen_yu}   # optional, these are the defaults
+    dem: {engine: hard_sphere, tangential_restitution: 0.33}  # optional: the default engine is
+                               # liggghts (soft spheres); hard_sphere is seed 001's event-driven
+                               # engine (section 3.3), with beta_0 (default: the soft contacts')
     mesh: {cell_size: 0.004}   # optional: the gas cells' size, m
 
 Derived (each rule stated in `derive`): the gas cells (four of the largest diameter, seed
@@ -45,6 +48,7 @@ import yaml
 
 import tfdem.run
 from tfdem import SOURCE_DIR, TUTORIALS
+from tfdem.engines import restitution_of_damping
 from tfdem.physics import wen_yu_minimum_fluidization
 
 ONE_LAYER = "one_layer"
@@ -55,6 +59,7 @@ GAS_STEP = 5e-4               # s: the bubbling bed's measured front (bench/READ
 INFLOW_COURANT = 1.0          # the gas step keeps the inflow's U dt / dy at or below this
 PACKED_SOLID_FRACTION = 0.6   # of a poured bed, for the bed height estimate
 LID_OVER_BED = 2.0            # the column should be at least this many packed bed heights tall
+MAX_SIZES = 9                 # particle sizes (the pour's templates; in.bed's per-pair variable names)
 FIELDS_TEMPLATE = os.path.join(TUTORIALS, "bubbling_bed", "system")
 
 
@@ -71,7 +76,9 @@ SCHEMA = {
     "run": {"end_time": None, "write_interval": None},
     "coupling": {"transfer": "averaged", "drag_law": "ergun_wen_yu"},
     "mesh": {"cell_size": 0.0},
+    "dem": {"engine": "liggghts", "tangential_restitution": "derived"},
 }
+ENGINES = ("liggghts", "hard_sphere")
 SIZE_KEYS = ("diameter", "number", "mass_fraction")
 WALL_KEYS = ("restitution", "friction")
 PLATE_KEYS = ("pressure_drop_fraction",)
@@ -124,7 +131,22 @@ def load_bed(path):
     _check_particles(path, bed)
     _check_inflow(path, bed)
     _check_run(path, bed)
+    _check_dem(path, bed)
     return bed
+
+
+def _check_dem(path, bed):
+    dem = bed["dem"]
+    if dem["engine"] not in ENGINES:
+        raise BedError(f"{path}: dem.engine: unknown value {dem['engine']!r}{_fix_name(str(dem['engine']), ENGINES)}")
+    if dem["tangential_restitution"] == "derived":
+        return
+    if dem["engine"] != "hard_sphere":
+        raise BedError(f"{path}: dem.tangential_restitution: only the hard-sphere engine takes beta_0 (the soft "
+                       "contacts' tangential damping follows from e_n); set dem.engine: hard_sphere, or leave it out")
+    dem["tangential_restitution"] = _number(path, "dem.tangential_restitution", dem["tangential_restitution"],
+                                            low_open=False, high=1.0, what="the tangential restitution beta_0 in "
+                                            "[0, 1] (seed 001 eq. 20)")
 
 
 def _check_box(path, bed):
@@ -139,17 +161,17 @@ def _check_particles(path, bed):
     p = bed["particles"]
     p["density"] = _number(path, "particles.density", p["density"], what="a density in kg/m^3")
     sizes = p["sizes"]
-    if not isinstance(sizes, list) or not 1 <= len(sizes) <= 2:
-        raise BedError(f"{path}: particles.sizes: expected a list of one or two sizes (the pour makes mono- and "
-                       f"bidisperse beds), got {sizes!r}")
+    if not isinstance(sizes, list) or not 1 <= len(sizes) <= MAX_SIZES:
+        raise BedError(f"{path}: particles.sizes: expected a list of 1 to {MAX_SIZES} sizes, got {sizes!r}")
     for i, size in enumerate(sizes):
         _check_keys(path, f"particles.sizes[{i}]", size, SIZE_KEYS)
         if "diameter" not in size:
             raise BedError(f"{path}: particles.sizes[{i}].diameter: missing (m)")
         size["diameter"] = _number(path, f"particles.sizes[{i}].diameter", size["diameter"], what="a diameter in m")
-    if len(sizes) == 2 and sizes[0]["diameter"] == sizes[1]["diameter"]:
-        raise BedError(f"{path}: particles.sizes: both sizes have diameter {sizes[0]['diameter']}; give one size")
     sizes.sort(key=lambda s: s["diameter"])
+    for a, b in zip(sizes, sizes[1:]):
+        if a["diameter"] == b["diameter"]:
+            raise BedError(f"{path}: particles.sizes: two sizes have diameter {a['diameter']:g}; give each size once")
     by_number = [("number" in s) for s in sizes]
     by_fraction = [("mass_fraction" in s) for s in sizes]
     if all(by_number) and not any(by_fraction):
@@ -270,6 +292,19 @@ def scene_numbers(bed, stiffness, wall_stiffness, cell, path="bed.yaml"):
     return numbers
 
 
+def _hard_sphere_tangential(bed, stiffness, mass):
+    """beta_0 of bed.yaml, or the soft contacts' (k_t = 2/7 k_n, eta_t = eta_n of the pair,
+    the tangential mass 2/7 m_ab: seed 001 eq. 30; the same for every pair and the walls, as
+    both scale with m_ab and k_n)."""
+    given = bed["dem"]["tangential_restitution"]
+    if given != "derived":
+        return given
+    e = bed["particles"]["restitution"]
+    m_ab = _reduced(mass, mass)
+    eta = -2 * math.log(e) * math.sqrt(m_ab * stiffness) / math.sqrt(math.pi ** 2 + math.log(e) ** 2)
+    return restitution_of_damping(2 / 7 * stiffness, eta, 2 / 7 * m_ab)
+
+
 def _fastest_inflow(bed):
     """The largest superficial inflow speed: the uniform inflow's or a jet's (m/s)."""
     return max([bed["inflow"]["velocity"]] + [j["velocity"] for j in bed["inflow"]["jets"]])
@@ -331,11 +366,13 @@ def derive(bed, path="bed.yaml"):
     out["u_mf"] = u_mf
     m_small = _mass(d_small, rho)
     stiffness = p["stiffness"] or _reduced(m_small, m_small) * (u_mf / (IMPACT_OVERLAP * d_small)) ** 2
-    if not p["stiffness"]:
+    hard = bed["dem"]["engine"] == "hard_sphere"
+    if not p["stiffness"] and not hard:
         note(f"k_n {stiffness:.4g} N/m: an impact at U_mf ({u_mf:.4g} m/s, Wen-Yu, smallest spheres) sinks "
              f"{IMPACT_OVERLAP:.0%} of d (seed 000's uniform bed: 5.7 %)")
     wall_stiffness = 2 * stiffness
-    note(f"wall k_n {wall_stiffness:.4g} N/m: twice the pairs', the same overlap and t_c for a wall's m_ab = m")
+    if not hard:
+        note(f"wall k_n {wall_stiffness:.4g} N/m: twice the pairs', the same overlap and t_c for a wall's m_ab = m")
     out["stiffness"], out["wall_stiffness"] = stiffness, wall_stiffness
 
     scene = scene_numbers(bed, stiffness, wall_stiffness, dx, path)
@@ -355,20 +392,31 @@ def derive(bed, path="bed.yaml"):
     note(f"gas step {gas_step:g} s: a round value below {bound:.4g} s, the least of {GAS_STEP:g} s (the bubbling "
          f"bed's measured front), the inflow's Courant number U dt/dy <= {INFLOW_COURANT:g} and half the packed "
          f"bed's drag response time {scene['dense_drag_time']:.3g} s")
-    note(f"DEM step {dt:.4g} s = gas step / {interval}: at most t_c/{pair['steps_per_contact']:.3g} = "
-         f"{pair['recommended_time_step']:.4g} s with t_c = {pair['contact_time']:.4g} s (smallest pair, seed 000 "
-         f"eq. 26), the scene check's rule for e_n = {p['restitution']:g}; walls t_c/{wall['contact_time'] / dt:.3g}")
+    if hard:
+        out["tangential_restitution"] = _hard_sphere_tangential(bed, stiffness, m_small)
+        given = bed["dem"]["tangential_restitution"] != "derived"
+        note(f"hard-sphere engine (seed 001 section 3.3, eqs. 11-21): binary collisions with e_n "
+             f"{p['restitution']:g}, beta_0 {out['tangential_restitution']:.4g}"
+             + (" (bed.yaml)" if given else " (the soft contacts' that tfdem new writes for LIGGGHTS: k_t = 2/7 k_n, "
+                "eta_t = eta_n, seed 001 eq. 30)")
+             + f" and mu {p['friction']:g}, the walls' e_n {p['wall']['restitution']:g} and mu "
+             f"{p['wall']['friction']:g}; no stiffness and no DEM step: the flight between flow steps is event "
+             "driven; one rank")
+    else:
+        note(f"DEM step {dt:.4g} s = gas step / {interval}: at most t_c/{pair['steps_per_contact']:.3g} = "
+             f"{pair['recommended_time_step']:.4g} s with t_c = {pair['contact_time']:.4g} s (smallest pair, seed 000 "
+             f"eq. 26), the scene check's rule for e_n = {p['restitution']:g}; walls t_c/{wall['contact_time'] / dt:.3g}")
 
     # the bed
     if "number" in p["sizes"][0]:
         numbers = [s["number"] for s in p["sizes"]]
         volumes = [n * math.pi * s["diameter"] ** 3 / 6 for n, s in zip(numbers, p["sizes"])]
         out["count"] = sum(numbers)
-        out["mass_fraction_small"] = volumes[0] / sum(volumes)
+        fractions = [v / sum(volumes) for v in volumes]
     else:
         out["count"] = p["count"]
-        out["mass_fraction_small"] = p["sizes"][0]["mass_fraction"]
-    fractions = [out["mass_fraction_small"], 1 - out["mass_fraction_small"]][:len(p["sizes"])]
+        fractions = [s["mass_fraction"] for s in p["sizes"]]
+    out["mass_fractions"] = fractions
     mean_volume = 1 / sum(f / (math.pi * s["diameter"] ** 3 / 6) for f, s in zip(fractions, p["sizes"]))
     solid_volume = out["count"] * mean_volume
     out["bed_mass"] = rho * solid_volume
@@ -576,9 +624,11 @@ def dem_script(bed, dv):
     sizes = [s["diameter"] for s in p["sizes"]]
     types = len(sizes) + 1
     wall_type = types
-    lines = [f"# {len(sizes) == 1 and 'Monodisperse' or 'Bidisperse'} bed generated by tfdem new (edit freely: each value "
+    kinds = {1: "Monodisperse", 2: "Bidisperse"}
+    spheres = {1: "1 the spheres", 2: "1 the small, 2 the large spheres"}
+    lines = [f"# {kinds.get(len(sizes), f'{len(sizes)}-size')} bed generated by tfdem new (edit freely: each value "
              "is stated once, below, and the rest follows from it).",
-             f"# Atom types: {'1 the spheres' if len(sizes) == 1 else '1 the small, 2 the large spheres'}, "
+             f"# Atom types: {spheres.get(len(sizes), f'1 to {len(sizes)} the sizes, smallest first')}, "
              f"{wall_type} the walls. Linear spring-dashpot contacts with absolute damping from e_n",
              "# (seed 001 eq. 27) for each pair's reduced mass (seed 001 eq. 16; a wall: m_ab = m).",
              f"variable        width equal {_g(box['width'])}",
@@ -682,6 +732,23 @@ def dem_script(bed, dv):
     return "\n".join(lines) + "\n"
 
 
+def _dem_section(bed, dv):
+    """coupling.yaml's dem: LIGGGHTS' script, or the hard-sphere engine and its collision laws."""
+    if bed["dem"]["engine"] != "hard_sphere":
+        return f"""dem:
+  script: in.bed        # its timestep is the DEM step; the gas step (system/controlDict deltaT)
+                        # is {dv['coupling_interval']} of them (the solver checks it is a whole number)"""
+    p = bed["particles"]
+    return f"""dem:
+  engine: hard_sphere   # event-driven binary collisions (seed 001 section 3.3); one rank
+  particles: bed.data   # tfdem pack pours it
+  hard_sphere:          # seed 001 eqs. 11-21: e_n, beta_0 and mu of every pair, and of the walls
+    restitution: {_g(p['restitution'])}
+    tangential_restitution: {dv['tangential_restitution']:.6g}
+    friction: {_g(p['friction'])}
+    wall: {{restitution: {_g(p['wall']['restitution'])}, tangential_restitution: {dv['tangential_restitution']:.6g}, friction: {_g(p['wall']['friction'])}}}"""
+
+
 def coupling_yaml(bed, dv):
     sizes = [s["diameter"] for s in bed["particles"]["sizes"]]
     diameter = _g(sizes[0]) if len(sizes) == 1 else "[" + ", ".join(_g(d) for d in sizes) + "]"
@@ -692,9 +759,7 @@ gas:
 particles:
   diameter: {diameter}      # m
   density: {_g(bed['particles']['density'])}       # kg/m^3
-dem:
-  script: in.bed        # its timestep is the DEM step; the gas step (system/controlDict deltaT)
-                        # is {dv['coupling_interval']} of them (the solver checks it is a whole number)
+{_dem_section(bed, dv)}
 coupling:
   transfer: {bed['coupling']['transfer']}
   drag_law: {bed['coupling']['drag_law']}
@@ -712,7 +777,9 @@ def packing_yaml(bed, dv):
     lines = ["# The packing `tfdem pack` pours (tfdem.packing): its count and mixture from bed.yaml",
              f"count: {dv['count']}"]
     if len(bed["particles"]["sizes"]) == 2:
-        lines.append(f"mass_fraction_small: {dv['mass_fraction_small']!r}")
+        lines.append(f"mass_fraction_small: {dv['mass_fractions'][0]!r}")
+    elif len(bed["particles"]["sizes"]) > 2:
+        lines.append(f"mass_fractions: [{', '.join(repr(f) for f in dv['mass_fractions'])}]   # smallest size first")
     lines.append(f"floor: {_g(dv['floor'])}")
     return "\n".join(lines) + "\n"
 
@@ -778,13 +845,14 @@ def write_case(dest, bed, dv, source=None):
         "constant/transportProperties": _foam_header("dictionary", "transportProperties") +
         f"// the gas of bed.yaml (coupling.yaml: the same)\nrho     {_g(bed['gas']['density'])};\n"
         f"nu      {_g(bed['gas']['viscosity'] / bed['gas']['density'])};\n",
-        "in.bed": dem_script(bed, dv),
         "coupling.yaml": coupling_yaml(bed, dv),
         "packing.yaml": packing_yaml(bed, dv),
         "Allrun": ALLRUN.format(env=os.path.join(SOURCE_DIR, "scripts", "tfdem-env.sh")),
         "Allclean": ALLCLEAN,
         "derived.txt": "What tfdem new derived, and why:\n" + "".join(f"  {n}\n" for n in dv["notes"]),
     }
+    if bed["dem"]["engine"] != "hard_sphere":
+        files["in.bed"] = dem_script(bed, dv)
     for name, text in initial_fields(bed, dv).items():
         files[f"0/{name}"] = text
     if bed["inflow"]["plate"]:

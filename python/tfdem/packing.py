@@ -3,7 +3,9 @@ width, depth and height come from the case's mesh, the particle sizes and densit
 coupling.yaml, and what only the packing needs from the case's packing.yaml:
 
     count: 8000                 # particles
-    mass_fraction_small: 0.25   # mixtures only: mass (= volume) fraction of the smaller size
+    mass_fraction_small: 0.25   # two sizes: mass (= volume) fraction of the smaller size
+    mass_fractions: [0.2, 0.5, 0.3]   # or, for any number of sizes: each size's mass fraction,
+                                # in coupling.yaml's order of diameters, smallest first
     floor: 0.0                  # optional: height of the plate the bed rests on (m)
     seed: 15485863              # optional: a prime; another one gives another packing
 
@@ -14,6 +16,7 @@ moved onto the mid-plane (overlaps of at most d - sqrt(d^2 - ((PLANE_SLAB - 1) d
 of d).
 """
 import argparse
+import math
 import os
 import re
 import sys
@@ -27,6 +30,11 @@ from tfdem.case import Case, CaseError
 
 POUR_SCRIPT = os.path.join(TUTORIALS, "poured_packing", "in.pour")
 PLANE_SLAB = 1.05  # depth of the slab a one-layer bed is poured into, in diameters
+SIZES_FILE = "pour_sizes.in"  # three or more sizes: in.pour's templates (written, read, removed)
+# LIGGGHTS' random seeds are primes, each fix's its own: the first primes above 11, 12, ...
+# 20 million, apart from in.pour's insertion seed (15485863, or packing.yaml's)
+TEMPLATE_SEEDS = (11000027, 12000017, 13000027, 14000029, 15000017, 16000057, 17000023, 18000041, 19000013)
+DISTRIBUTION_SEED = 20000003
 
 
 def one_layer(case):
@@ -36,23 +44,24 @@ def one_layer(case):
     return hi[2] - lo[2] < 1.5 * case.particle_diameters()[-1]
 
 
-def pour_variables(case, count, mass_fraction_small=1.0, floor=None, seed=None, friction=None):
+def pour_variables(case, count, mass_fraction_small=None, mass_fractions=None, floor=None, seed=None, friction=None):
     """The -var settings of in.pour for `case` (a Case or its path); `friction`: the pour's
-    mu (in.pour's own default otherwise). A one-layer column is poured PLANE_SLAB diameters
-    deep."""
+    mu (in.pour's own default otherwise); the mixture as mass_fraction_small (two sizes) or
+    mass_fractions (one per size, smallest first). A one-layer column is poured PLANE_SLAB
+    diameters deep. Three or more sizes add `sizes`, the file sizes_file() writes."""
     case = case if isinstance(case, Case) else Case(case)
     lo, hi = case.mesh_bounds()
     if abs(lo[0]) > 1e-12 or abs(lo[2]) > 1e-12:
         raise CaseError(f"{case.file('system', 'blockMeshDict')}: the pour needs the column's corner at"
                         f" x = z = 0, the mesh starts at ({lo[0]}, {lo[2]})")
     diameters = case.particle_diameters()
-    if len(diameters) > 2:
-        raise CaseError(f"{case.file('coupling.yaml')}: particles.diameter lists {len(diameters)} sizes;"
-                        " the pour makes mono- and bidisperse beds")
+    fractions = mixture(case, diameters, mass_fraction_small, mass_fractions)
     values = {"width": hi[0], "depth": hi[2], "height": hi[1], "floor": lo[1] if floor is None else floor,
               "count": int(count), "dp_small": diameters[0], "dp_large": diameters[-1],
-              "mass_fraction_small": mass_fraction_small if len(diameters) == 2 else 1.0,
+              "mass_fraction_small": fractions[0] if len(diameters) == 2 else 1.0,
               "rho": float(case.coupling_value("particles.density"))}
+    if len(diameters) > 2:
+        values["sizes"], values["size_count"] = SIZES_FILE, len(diameters)
     if seed is not None:
         values["seed"] = int(seed)
     if friction is not None:
@@ -63,6 +72,68 @@ def pour_variables(case, count, mass_fraction_small=1.0, floor=None, seed=None, 
         # mean height steady to 1e-5 m over 40,000 steps): at rest below 1 cm/s
         values["rest_speed"] = 0.01
     return values
+
+
+def mixture(case, diameters, mass_fraction_small=None, mass_fractions=None):
+    """Each size's mass fraction (smallest first) from packing.yaml's mass_fraction_small (two
+    sizes) or mass_fractions (any number); one size: [1]."""
+    path = case.file("packing.yaml")
+    if mass_fractions is not None:
+        if mass_fraction_small is not None:
+            raise CaseError(f"{path}: give mass_fractions or mass_fraction_small, not both")
+        if not isinstance(mass_fractions, list) or len(mass_fractions) != len(diameters) or \
+                not all(isinstance(f, (int, float)) and 0 < f <= 1 for f in mass_fractions):
+            raise CaseError(f"{path}: mass_fractions: expected {len(diameters)} fractions in (0, 1], one per size of "
+                            f"coupling.yaml's particles.diameter {diameters}, got {mass_fractions!r}")
+        if abs(sum(mass_fractions) - 1) > 1e-9:
+            raise CaseError(f"{path}: mass_fractions sum to {sum(mass_fractions):g}, not 1")
+        return [float(f) for f in mass_fractions]
+    if len(diameters) == 1:
+        return [1.0]
+    if len(diameters) == 2:
+        small = 1.0 if mass_fraction_small is None else float(mass_fraction_small)
+        return [small, 1.0 - small]
+    raise CaseError(f"{path}: {len(diameters)} sizes in coupling.yaml's particles.diameter: give mass_fractions, "
+                    "one per size, smallest first")
+
+
+def sizes_file(case, diameters, fractions):
+    """in.pour's templates for three or more sizes: one particletemplate/sphere a size (all of
+    atom type 1: the pour's contacts are the same for every pair; retype() sorts them after),
+    the distribution `sizes`, and the mixture's mean volume for the waves."""
+    if len(diameters) > len(TEMPLATE_SEEDS):
+        raise CaseError(f"{case.file('coupling.yaml')}: {len(diameters)} sizes; the pour takes up to "
+                        f"{len(TEMPLATE_SEEDS)}")
+    lines = ["# Written by tfdem.packing for in.pour: one template a size, by mass fraction"]
+    for k, (d, seed) in enumerate(zip(diameters, TEMPLATE_SEEDS), 1):
+        lines.append(f"fix             size{k} all particletemplate/sphere {seed} atom_type 1 density constant "
+                     f"${{rho}} radius constant {d / 2!r}")
+    pairs = " ".join(f"size{k} {f!r}" for k, f in enumerate(fractions, 1))
+    lines.append(f"fix             sizes all particledistribution/discrete {DISTRIBUTION_SEED} {len(diameters)} {pairs}")
+    mean_volume = 1 / sum(f / (math.pi * d ** 3 / 6) for f, d in zip(fractions, diameters))
+    lines.append(f"variable        mean_volume equal {mean_volume!r}")
+    with open(case.file(SIZES_FILE), "w") as f:
+        f.write("\n".join(lines) + "\n")
+
+
+def retype(path, diameters):
+    """Give every atom of a data file the type of its size: 1 + the index of its diameter in
+    `diameters` (ascending; the walls' type comes after them)."""
+    lines, out, section = open(path).read().split("\n"), [], ""
+    for line in lines:
+        words = line.split()
+        if words and words[0][0].isalpha():
+            section = words[0]
+        elif section == "Atoms" and len(words) >= 7 and words[0].isdigit():
+            d = float(words[2])
+            k = min(range(len(diameters)), key=lambda i: abs(diameters[i] - d))
+            if abs(diameters[k] - d) > 1e-9 * d:
+                raise CaseError(f"{path}: atom {words[0]} of diameter {d} is none of the sizes {diameters}")
+            words[1] = str(k + 1)
+            line = " ".join(words)
+        out.append(line)
+    with open(path, "w") as f:
+        f.write("\n".join(out))
 
 
 def set_atom_types(path, count):
@@ -116,7 +187,7 @@ def packing_settings(case):
         raise CaseError(f"{path}: missing; it gives the packing's particle count (see tfdem.packing)")
     with open(path) as f:
         settings = yaml.safe_load(f) or {}
-    known = ("count", "mass_fraction_small", "floor", "seed")
+    known = ("count", "mass_fraction_small", "mass_fractions", "floor", "seed")
     unknown = sorted(set(settings) - set(known))
     if unknown:
         raise CaseError(f"{path}: unknown key '{unknown[0]}'; valid keys: {', '.join(known)}")
@@ -135,13 +206,23 @@ def pour(case, count, out="bed.data", ranks=1, runner=tfdem.run.run, **options):
     returns the printed summary line ('TFDEM packed bed: N particles, mean height ...')."""
     case = case if isinstance(case, Case) else Case(case)
     args = ["tfdem-liggghts", "-in", POUR_SCRIPT, "-log", "log.pour.liggghts"]
-    for name, value in pour_variables(case, count, **options).items():
+    variables = pour_variables(case, count, **options)
+    for name, value in variables.items():
         args += ["-var", name, repr(value) if isinstance(value, float) else str(value)]
     args += ["-var", "out", out]
-    _, output = runner(args, case.path, "log.pour", ranks=ranks)
+    diameters = case.particle_diameters()
+    if "sizes" in variables:
+        sizes_file(case, diameters, mixture(case, diameters, options.get("mass_fraction_small"),
+                                            options.get("mass_fractions")))
+    try:
+        _, output = runner(args, case.path, "log.pour", ranks=ranks)
+    finally:
+        if os.path.exists(case.file(SIZES_FILE)):
+            os.remove(case.file(SIZES_FILE))
     lines = [line for line in output.splitlines() if line.startswith("TFDEM packed bed")]
     if not lines:
         raise CaseError(f"{case.file('log.pour')}: the pour printed no 'TFDEM packed bed' line")
+    retype(case.file(out), diameters)
     if one_layer(case):
         lo, hi = case.mesh_bounds()
         to_mid_plane(case.file(out), hi[2] - lo[2])
@@ -160,15 +241,21 @@ def script_type_count(case):
 
 
 def pack_case(case, ranks=1, runner=tfdem.run.run):
-    """`tfdem pack`: pour the case's packing.yaml with the friction of its DEM script's particle
-    pairs, into the data file its script reads, with the atom types the script declares."""
+    """`tfdem pack`: pour the case's packing.yaml into the data file its particle engine reads,
+    with the friction of the particle pairs and the atom types it declares: the DEM script's,
+    or for the hard-sphere engine its dem.hard_sphere.friction and a type per size."""
     case = case if isinstance(case, Case) else Case(case)
-    script = case.dem()
-    out = script.command("read_data")[1]
-    tables = tfdem.engines.contact_properties(script)
-    summary = pour(case, out=out, ranks=ranks, runner=runner, friction=tables["coefficientFriction"][0][0],
-                   **packing_settings(case))
-    set_atom_types(case.file(out), script_type_count(case))
+    out = case.particles_file()
+    if case.hard_sphere():
+        friction = case.coupling_value("dem.hard_sphere.friction")
+        while isinstance(friction, list):
+            friction = friction[0]
+        types = len(case.particle_diameters())
+    else:
+        friction = tfdem.engines.contact_properties(case.dem())["coefficientFriction"][0][0]
+        types = script_type_count(case)
+    summary = pour(case, out=out, ranks=ranks, runner=runner, friction=float(friction), **packing_settings(case))
+    set_atom_types(case.file(out), types)
     return summary
 
 

@@ -1,4 +1,4 @@
-"""`tfdem new` and `tfdem pack` on four beds a user might bring, each generated from a YAML,
+"""`tfdem new` and `tfdem pack` on five beds a user might bring, each generated from a YAML,
 poured and run for a few hundredths of a second, with nothing edited by hand:
 
 - one layer of 1 mm beads (the 2-D rule) on a distributor plate, gas at 0.65 U_mf: the fixed
@@ -9,20 +9,23 @@ poured and run for a few hundredths of a second, with nothing edited by hand:
   centroid-mapped rows gives 120.0 Pa against the measured 122.3);
 - a pseudo-2-D bidisperse bed (6 large diameters deep, mass fractions 0.4/0.6) bubbling at
   uniform inflow: every particle inside the slab between the front and back walls;
+- a pseudo-2-D bed of three sizes (mass fractions 0.3/0.3/0.4): the pour's templates for
+  any number of sizes, and each size's atom type;
 - a 3-D monodisperse bed (cubic cells, 3 across the depth);
 - a bed with a central jet through a closed bottom: the jet patch carries the YAML's velocity
   and the rest of the bottom none.
 
 Each: the particle count and bed mass from the YAML by hand (a number-based bed: N rho pi d^3
-/ 6 exactly; the mixture: its count exactly and the small spheres' mass fraction within four
-binomial standard deviations of the YAML's), every particle kept, and the solver's own
+/ 6 exactly; a mixture: its count exactly and each size's number within four binomial
+standard deviations of the YAML's mass fraction, and the k-th size of atom type k in the
+poured bed), every particle kept, and the solver's own
 contact-time check raising no advice or warning about the DEM step tfdem new derived.
 """
 import math
 import os
 
 import tfdem.packing
-from tfdem.case import Case
+from tfdem.case import Case, read_data_file
 from tfdem.newcase import load_bed, derive, write_case
 from tfdem.outputs import probes, vtk_particles, joined_series
 from tfdem.physics import ergun_gradient
@@ -49,6 +52,17 @@ particles:
   restitution: 0.9
   friction: 0.15
   wall: {restitution: 0.8, friction: 0.2}
+inflow: {velocity: 1.4}
+run: {end_time: 0.05, write_interval: 0.05}
+""",
+    "three_sizes": """
+box: {width: 0.06, height: 0.2, depth: 0.015}
+particles:
+  density: 2500
+  sizes: [{diameter: 0.0015, mass_fraction: 0.3}, {diameter: 0.002, mass_fraction: 0.3}, {diameter: 0.0025, mass_fraction: 0.4}]
+  count: 1200
+  restitution: 0.9
+  friction: 0.15
 inflow: {velocity: 1.4}
 run: {end_time: 0.05, write_interval: 0.05}
 """,
@@ -104,17 +118,25 @@ def check_common(checks, name, case, bed, dv):
         checks.close(f"{name}: bed mass (kg) against the YAML's N rho pi d^3/6", mass, expected_mass, 1e-12)
     else:
         checks.true(f"{name}: every particle poured and kept", count == p["count"], f"({count} of {p['count']})")
-        small = p["sizes"][0]["diameter"]
-        small_mass = sum(p["density"] * math.pi * d ** 3 / 6 for d in frame["diameter"] if abs(d - small) < 1e-12)
         # the pour draws each sphere's size at random by the YAML's mass fractions: the number of
-        # small ones is binomial with the number-probability that gives that mass fraction
-        f, (ds, dl) = p["sizes"][0]["mass_fraction"], (small, p["sizes"][1]["diameter"])
-        q = (f / ds ** 3) / (f / ds ** 3 + (1 - f) / dl ** 3)
-        n_small = sum(1 for d in frame["diameter"] if abs(d - small) < 1e-12)
-        sigma = math.sqrt(count * q * (1 - q))
-        checks.true(f"{name}: small spheres within 4 binomial sigma of the YAML's fraction",
-                    abs(n_small - count * q) < 4 * sigma,
-                    f"({n_small} vs {count * q:.1f} +- {sigma:.1f}; mass fraction {small_mass / mass:.4f} vs {f})")
+        # each size is binomial with the number-probability q_k = (f_k / d_k^3) / sum_j (f_j / d_j^3)
+        # that gives its mass fraction f_k
+        weights = [s["mass_fraction"] / s["diameter"] ** 3 for s in p["sizes"]]
+        for s, w in zip(p["sizes"], weights):
+            q = w / sum(weights)
+            n = sum(1 for d in frame["diameter"] if abs(d - s["diameter"]) < 1e-12)
+            size_mass = sum(p["density"] * math.pi * d ** 3 / 6 for d in frame["diameter"]
+                            if abs(d - s["diameter"]) < 1e-12)
+            sigma = math.sqrt(count * q * (1 - q))
+            checks.true(f"{name}: spheres of {s['diameter'] * 1000:g} mm within 4 binomial sigma of the YAML's "
+                        "fraction", abs(n - count * q) < 4 * sigma,
+                        f"({n} vs {count * q:.1f} +- {sigma:.1f}; mass fraction {size_mass / mass:.4f} vs "
+                        f"{s['mass_fraction']})")
+        poured = read_data_file(case.file("bed.data"))
+        types = sorted({(t, round(d, 12)) for t, d in zip(poured["type"], poured["diameter"])})
+        expected_types = [(k + 1, s["diameter"]) for k, s in enumerate(p["sizes"])]
+        checks.true(f"{name}: the poured bed gives the k-th size atom type k, smallest first", types == expected_types,
+                    f"({types})")
     log = open(case.file("log.tfdemFoam")).read()
     lines = [l for l in log.splitlines() if "TFDEM warning" in l or ("advice" in l and "contact of atom types" in l)]
     checks.true(f"{name}: the solver's contact-time check finds the derived DEM step sound", not lines,

@@ -16,13 +16,15 @@ on a plate taking 0.3 of the weight. By hand:
   plate: d = 0.3 (256.70) / (1.8e-5 (0.004) 0.53805) = 1.9879e9 1/m^2
   cells: 4 d = 4 mm -> 10 x 30 x 1
 """
+import math
 import os
 import re
 import sys
 import tempfile
 
-from tfdem.case import Case, DemScript
+from tfdem.case import Case, CaseError, DemScript
 from tfdem.newcase import BedError, derive, load_bed, main, write_case
+from tfdem.packing import mixture, packing_settings
 
 failures = []
 
@@ -85,6 +87,74 @@ def check_derived(root):
     check("a second write into the same folder is refused", _refused(lambda: write_case(case_path, bed, dv)))
 
 
+def check_three_sizes(root):
+    """Three sizes by number, 300 of 1 mm, 200 of 1.5 mm, 100 of 2 mm: mass fractions by hand
+    n d^3 / sum = 300, 675, 800 of 1775; the damping of the 1.5-2 mm pair from its reduced
+    mass (seed 001 eq. 16, 27); packing.yaml's mass_fractions and the pour's mixture from it;
+    a packing.yaml with fractions of the wrong length or sum refused."""
+    text = BED.replace("sizes: [{diameter: 0.001, number: 800}]",
+                       "sizes: [{diameter: 0.002, number: 100}, {diameter: 0.001, number: 300}, "
+                       "{diameter: 0.0015, number: 200}]")
+    source = write(root, "three.yaml", text)
+    bed = load_bed(source)
+    dv = derive(bed, source)
+    for got, expected in zip(dv["mass_fractions"], (300 / 1775, 675 / 1775, 800 / 1775)):
+        close("three sizes: mass fraction", got, expected, 1e-12)
+    case_path = os.path.join(root, "three_case")
+    write_case(case_path, bed, dv, source)
+    script = DemScript(os.path.join(case_path, "in.bed"))
+    m2, m3 = (2500 * math.pi * d ** 3 / 6 for d in (0.0015, 0.002))
+    m_ab, e, k = m2 * m3 / (m2 + m3), 0.9, script.value("${kn}")  # k_n as in.bed states it (6 digits)
+    close("in.bed: the 1.5-2 mm pair's damping", script.value("${eta23}"),
+          -2 * math.log(e) * math.sqrt(m_ab * k) / math.sqrt(math.pi ** 2 + math.log(e) ** 2), 1e-9)
+    check("in.bed: four atom types (three sizes and the walls)", "peratomtypepair 4 " in open(script.path).read())
+    case = Case(case_path)
+    settings = packing_settings(case)
+    fractions = mixture(case, case.particle_diameters(), settings.get("mass_fraction_small"),
+                        settings.get("mass_fractions"))
+    for got, expected in zip(fractions, (300 / 1775, 675 / 1775, 800 / 1775)):
+        close("packing.yaml: the pour's mass fraction", got, expected, 1e-12)
+    for bad, expected in (([0.5, 0.5], "expected 3 fractions"), ([0.5, 0.3, 0.1], "sum to 0.9, not 1")):
+        try:
+            mixture(case, case.particle_diameters(), None, bad)
+            check(f"packing mass_fractions refused: {expected}", False)
+        except CaseError as error:
+            check(f"packing mass_fractions refused: {expected}", expected in str(error), str(error))
+
+
+def check_hard_sphere(root):
+    """dem.engine: hard_sphere: no DEM script; coupling.yaml's dem names the engine, the data
+    file and the collision laws: e_n and mu of bed.yaml and beta_0 by hand from the soft
+    contacts tfdem new writes for LIGGGHTS (k_t = 2/7 k_n, eta_t = eta_n, tangential mass
+    2/7 m_ab; seed 001 eq. 30): with c = -2 ln 0.9 / sqrt(pi^2 + ln^2 0.9) = 0.0670373,
+    beta_0 = exp(-pi c / sqrt(16/49 - c^2)) = exp(-0.371118) = 0.689963, whatever m_ab and
+    k_n; a given beta_0 (0.33) is written as given."""
+    for text, beta in ((BED + "dem: {engine: hard_sphere}\n", 0.689963),
+                       (BED + "dem: {engine: hard_sphere, tangential_restitution: 0.33}\n", 0.33)):
+        source = write(root, "hard.yaml", text)
+        bed = load_bed(source)
+        dv = derive(bed, source)
+        case_path = os.path.join(root, f"hard_case_{beta}")
+        write_case(case_path, bed, dv, source)
+        case = Case(case_path)
+        hard = case.coupling_value("dem.hard_sphere")
+        check(f"hard spheres (beta_0 {beta}): engine and data file", case.hard_sphere()
+              and case.particles_file() == "bed.data" and case.coupling_value("dem.script") is None)
+        close(f"hard spheres: beta_0 {beta}", hard["tangential_restitution"], beta, 2e-6)
+        close("hard spheres: the walls' beta_0", hard["wall"]["tangential_restitution"], beta, 2e-6)
+        check("hard spheres: e_n and mu of bed.yaml", (hard["restitution"], hard["friction"], hard["wall"]["restitution"])
+              == (0.9, 0.1, 0.9), f"({hard})")
+        check("hard spheres: no DEM script written", not os.path.exists(os.path.join(case_path, "in.bed")))
+        check("hard spheres: no DEM step derived", not any(n.startswith("DEM step") for n in dv["notes"]))
+    case.set_time_steps(gas=2.5e-4)
+    check("hard spheres: a sweep's gas step is set alone", case.delta_t() == 2.5e-4)
+    try:
+        case.set_time_steps(dem=1e-5)
+        check("hard spheres: a DEM step is refused", False)
+    except CaseError as error:
+        check("hard spheres: a DEM step is refused", "which has none" in str(error), str(error))
+
+
 def _refused(action):
     try:
         action()
@@ -112,9 +182,19 @@ BAD = [
     ("an unknown drag law (the core's list)", ("run:", "coupling: {drag_law: ergun_wenyu}\nrun:"),
      r"bad\.yaml: coupling\.drag_law: unknown value 'ergun_wenyu' \(did you mean 'ergun_wen_yu'\?\)"),
     ("a column too short for its bed", ("height: 0.12", "height: 0.03"), r"box\.height: 0\.03 m leaves the bed"),
-    ("three sizes", ("sizes: [{diameter: 0.001, number: 800}]",
-                     "sizes: [{diameter: 0.001, number: 8}, {diameter: 0.002, number: 8}, {diameter: 0.003, number: 8}]"),
-     r"particles\.sizes: expected a list of one or two sizes"),
+    ("a misspelt engine", ("run:", "dem: {engine: hardsphere}\nrun:"),
+     r"dem\.engine: unknown value 'hardsphere' \(did you mean 'hard_sphere'\?\)"),
+    ("beta_0 for soft spheres", ("run:", "dem: {tangential_restitution: 0.4}\nrun:"),
+     r"dem\.tangential_restitution: only the hard-sphere engine takes beta_0"),
+    ("beta_0 above 1", ("run:", "dem: {engine: hard_sphere, tangential_restitution: 1.5}\nrun:"),
+     r"dem\.tangential_restitution: 1\.5 is outside \[0, 1\]"),
+    ("ten sizes", ("sizes: [{diameter: 0.001, number: 800}]",
+                   "sizes: [" + ", ".join(f"{{diameter: {0.0005 + 0.0001 * k:g}, number: 8}}" for k in range(10)) + "]"),
+     r"particles\.sizes: expected a list of 1 to 9 sizes"),
+    ("a size given twice", ("sizes: [{diameter: 0.001, number: 800}]",
+                            "sizes: [{diameter: 0.001, number: 8}, {diameter: 0.0008, number: 8}, "
+                            "{diameter: 0.001, number: 8}]"),
+     r"particles\.sizes: two sizes have diameter 0\.001; give each size once"),
 ]
 
 
@@ -140,6 +220,8 @@ def check_refusals(root):
 def main_test():
     with tempfile.TemporaryDirectory() as root:
         check_derived(root)
+        check_three_sizes(root)
+        check_hard_sphere(root)
         check_refusals(root)
     if failures:
         print(f"{len(failures)} check(s) failed: {', '.join(failures)}")
