@@ -4,9 +4,9 @@ poured and run for a few hundredths of a second, with nothing edited by hand:
 - one layer of 1 mm beads (the 2-D rule) on a distributor plate, gas at 0.65 U_mf: the fixed
   bed's pressure drop (inlet area average - top probe) against Ergun (1952) at the bed's
   measured voidage and height, plus the gas column and the plate's Darcy drop mu d L U,
-  within 3 % (the fluidization tutorial's agreement; this bed's crystalline layers put 5 and 4
-  layers' centres in alternate cell rows, and Ergun summed row by row over the solver's
-  centroid-mapped rows gives 120.0 Pa against the measured 122.3);
+  averaged over the last 0.05 s, within 3 % (the fluidization tutorial's agreement; measured
+  +1.9 %; this bed's crystalline layers put 5 and 4 layers' centres in alternate cell rows,
+  so Ergun at the bulk voidage is not the solver's row-by-row drop exactly);
 - a pseudo-2-D bidisperse bed (6 large diameters deep, mass fractions 0.4/0.6) bubbling at
   uniform inflow: every particle inside the slab between the front and back walls;
 - a pseudo-2-D bed of three sizes (mass fractions 0.3/0.3/0.4): the pour's templates for
@@ -15,7 +15,8 @@ poured and run for a few hundredths of a second, with nothing edited by hand:
 - a bed with a central jet through a closed bottom: the jet patch carries the YAML's velocity
   and the rest of the bottom none.
 
-Each: the particle count and bed mass from the YAML by hand (a number-based bed: N rho pi d^3
+Each: the poured bed at rest with its largest overlap within tfdem pack's bound, the particle
+count and bed mass from the YAML by hand (a number-based bed: N rho pi d^3
 / 6 exactly; a mixture: its count exactly and each size's number within four binomial
 standard deviations of the YAML's mass fraction, and the k-th size of atom type k in the
 poured bed), every particle kept, and the solver's own
@@ -24,7 +25,10 @@ contact-time check raising no advice or warning about the DEM step tfdem new der
 import math
 import os
 
+import numpy
+
 import tfdem.packing
+from tfdem.packing import MAX_OVERLAP
 from tfdem.case import Case, read_data_file
 from tfdem.newcase import load_bed, derive, write_case
 from tfdem.outputs import probes, vtk_particles, joined_series
@@ -105,6 +109,24 @@ def generate(checks, name, text):
     return Case(path), bed, dv
 
 
+def check_poured(checks, name, path):
+    """The poured bed at rest (every velocity and spin zero) and its largest overlap, over all
+    pairs (no neighbour search), within what tfdem pack promises: below MAX_OVERLAP, 5 % of
+    the pair's smaller diameter (measured 0.09-0.53 % on these shallow beds)."""
+    atoms = read_data_file(path)
+    x = numpy.array([atoms["x"], atoms["y"], atoms["z"]]).T
+    d = numpy.array(atoms["diameter"])
+    distance = numpy.sqrt(((x[:, None, :] - x[None, :, :]) ** 2).sum(axis=-1))
+    numpy.fill_diagonal(distance, numpy.inf)
+    overlap = ((0.5 * (d[:, None] + d[None, :]) - distance) / numpy.minimum(d[:, None], d[None, :])).max()
+    checks.true(f"{name}: poured bed's largest overlap below {MAX_OVERLAP:.0%} of d", overlap < MAX_OVERLAP,
+                f"({overlap:.3%})")
+    text = open(path).read()
+    velocities = text[text.index("Velocities"):].split("\n")[1:] if "Velocities" in text else []
+    moving = [line for line in velocities if len(line.split()) >= 7 and any(float(v) != 0 for v in line.split()[1:7])]
+    checks.true(f"{name}: poured bed at rest (no velocity, no spin)", not moving, f"({len(moving)} moving)")
+
+
 def check_common(checks, name, case, bed, dv):
     p = bed["particles"]
     end = bed["run"]["end_time"]
@@ -137,6 +159,7 @@ def check_common(checks, name, case, bed, dv):
         expected_types = [(k + 1, s["diameter"]) for k, s in enumerate(p["sizes"])]
         checks.true(f"{name}: the poured bed gives the k-th size atom type k, smallest first", types == expected_types,
                     f"({types})")
+    check_poured(checks, name, case.file("bed.data"))
     log = open(case.file("log.tfdemFoam")).read()
     lines = [l for l in log.splitlines() if "TFDEM warning" in l or ("advice" in l and "contact of atom types" in l)]
     checks.true(f"{name}: the solver's contact-time check finds the derived DEM step sound", not lines,
@@ -160,8 +183,11 @@ def check_fixed_bed(checks, case, bed, dv, frame):
     heights = [y for _, y, _ in frame["position"]]
     bed_height = 2 * (math.fsum(heights) / len(heights) - floor)
     eps = 1 - math.fsum(math.pi * di ** 3 / 6 for di in frame["diameter"]) / (width * depth * bed_height)
-    p_top = probes(case.path, "abovePressure", "p")[-1][1][0]
-    p_inlet = joined_series(case.path, "inletPressure", "surfaceFieldValue.dat")[-1][1][0]
+    # the last 0.05 s: the fixed bed's steady drop, without the single-step pressure kicks of a
+    # sphere crossing a cell face (the centroid void fraction's jitter, up to 15 Pa here)
+    p_top = numpy.mean([v[0] for t, v in probes(case.path, "abovePressure", "p") if t >= 0.05 - 1e-9])
+    p_inlet = numpy.mean([v[0] for t, v in joined_series(case.path, "inletPressure", "surfaceFieldValue.dat")
+                          if t >= 0.05 - 1e-9])
     y_top = case.probe_locations("abovePressure")[0][1]
     expected = (ergun_gradient(u, eps, d, rho_g, mu) * bed_height + rho_g * 9.81 * y_top
                 + mu * dv["plate_darcy"] * dy * u)

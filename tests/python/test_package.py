@@ -15,7 +15,7 @@ from tfdem.bubble import coloured_above, find_bubble
 from tfdem.case import Case, CaseError, DemScript, set_yaml_value
 from tfdem.engines import ScriptError, hard_sphere_laws, restitution_of_damping
 from tfdem.outputs import OutputError, dump_frames, fix_print, joined_series
-from tfdem.packing import packing_settings, set_atom_types, to_mid_plane
+from tfdem.packing import at_rest, largest_overlap, packing_settings, set_atom_types, to_mid_plane
 from tfdem.physics import slab_solid_fraction
 from tfdem.run import command
 from tfdem.stats import batch_means
@@ -294,8 +294,9 @@ def main():
     check("coloured fraction above a moved middle",
           coloured_above(start, [1, 2, 3, 4, 5], [0.07, 0.10, 0.13, 0.16, 0.3], 0.1, 0.15) == 0.25)
 
-    # A one-layer bed poured in a slab, moved onto the mid-plane of a 4 mm deep box, its motion
-    # kept in the plane, declared with the template's 2 atom types; a type beyond them refused
+    # A one-layer bed poured in a slab, moved onto the mid-plane of a 4 mm deep box (its motion
+    # untouched), written at rest, declared with the template's 2 atom types; a type beyond
+    # them refused
     data = os.path.join(case_dir, "poured.data")
     write(data, "LIGGGHTS data file\n\n2 atoms\n3 atom types\n\n0 0.15 xlo xhi\n0 0.9 ylo yhi\n"
                 "0 0.0042 zlo zhi\n\nAtoms\n\n1 1 0.004 2700 0.01 0.02 0.0019 0 0 0\n"
@@ -306,7 +307,21 @@ def main():
     lines = open(data).read().split("\n")
     check("moved onto the mid-plane", lines[10].split()[6] == "0.002" and lines[11].split()[6] == "0.002", lines[10])
     check("box 4 mm deep", "0 0.004 zlo zhi" in lines, str(lines[:9]))
-    check("in-plane motion kept: vx vy wz", lines[15].split() == ["1", "0.1", "0.2", "0", "0", "0", "0.6"], lines[15])
+    check("motion untouched by the move", lines[15].split() == ["1", "0.1", "0.2", "0.3", "0.4", "0.5", "0.6"], lines[15])
+    at_rest(data)
+    lines = open(data).read().split("\n")
+    check("written at rest: every velocity and spin zero",
+          lines[15].split() == ["1"] + ["0"] * 6 and lines[16].split() == ["2"] + ["0"] * 6, str(lines[15:17]))
+    check("centres kept at rest", lines[10].split()[4:7] == ["0.01", "0.02", "0.002"], lines[10])
+    check("no overlap in the bed above: 0", largest_overlap(data) == 0.0, str(largest_overlap(data)))
+    # By hand: a 4 mm and a 2 mm sphere 2.9 mm apart overlap by 0.1 mm, 5 % of the smaller
+    # diameter; a third sphere 1 mm clear of both adds nothing
+    pair = os.path.join(case_dir, "overlapping.data")
+    write(pair, "LIGGGHTS data file\n\n3 atoms\n2 atom types\n\n0 0.15 xlo xhi\n0 0.9 ylo yhi\n"
+                "0 0.004 zlo zhi\n\nAtoms\n\n1 1 0.004 2700 0.01 0.02 0.002 0 0 0\n"
+                "2 2 0.002 2700 0.0129 0.02 0.002 0 0 0\n3 2 0.002 2700 0.0169 0.02 0.002 0 0 0\n")
+    check("largest overlap by hand: 5 % of the smaller diameter", abs(largest_overlap(pair) - 0.05) < 1e-9,
+          str(largest_overlap(pair)))
     check("2 atom types declared", "2 atom types" in lines, str(lines[:5]))
     try:
         set_atom_types(data, 0)

@@ -38,6 +38,7 @@ VARIANTS = with_hard_sphere(LAWS)
 DEFAULT_VARIANTS = tuple(LAWS)
 SEED_AT_60_S = {"polydisperse": 0.65, "experiment": 0.64}
 REPORT_TIMES = (1, 2, 5, 10, 20, 30, 60)
+LATE_SPAN = 10.0  # s: the span before the end whose samples' spread report prints
 
 
 class HardSphereVariant(VariantRun):
@@ -55,14 +56,20 @@ def segregation_run(name, ranks, root=HERE):
 
 
 def segregation_series(law, root=HERE):
-    """(t, s) of a run's particle statistics, joined over its segments; empty before its first
-    sample."""
+    """(t, s) of a run's particle statistics, joined over its segments, and where they came
+    from: the run itself, else the s(t) an earlier report kept in results/<law>.csv (a run
+    whose directory is gone); empty before its first sample."""
     path = os.path.join(root, "runs", law)
     try:
         stats = outputs.particle_statistics(path)
+        return stats["t"], stats.get("segregation", []), "run"
     except outputs.OutputError:
-        return [], []
-    return stats["t"], stats.get("segregation", [])
+        pass
+    kept = os.path.join(root, "results", f"{law}.csv")
+    if not os.path.isfile(kept):
+        return [], [], None
+    rows = [line.split(",") for line in open(kept) if line.strip() and not line.startswith("#")]
+    return [float(t) for t, _ in rows], [float(s) for _, s in rows], "kept"
 
 
 def write_series(path, t, s):
@@ -73,6 +80,17 @@ def write_series(path, t, s):
         f.writelines(f"{ti:.6g},{si:.6g}\n" for ti, si in zip(t, s))
 
 
+def late_statistics(t, s, span=LATE_SPAN):
+    """The mean and standard deviation of s over the last `span` seconds reached, when the run
+    reached 60 s: the 0.1 s samples swing with the bubbles, so s(60 s) alone is one draw."""
+    late = [si for ti, si in zip(t, s) if ti >= t[-1] - span - 1e-9]
+    if t[-1] < REPORT_TIMES[-1] - 1e-9 or len(late) < 2:
+        return ""
+    mean = sum(late) / len(late)
+    std = (sum((x - mean) ** 2 for x in late) / (len(late) - 1)) ** 0.5
+    return f"; over {t[-1] - span:g}-{t[-1]:g} s: {mean:.3f} mean, {std:.3f} standard deviation of the samples"
+
+
 def report(root=HERE):
     import matplotlib
     matplotlib.use("Agg")
@@ -81,17 +99,20 @@ def report(root=HERE):
     reached_end = 0.0
     styles = {"polydisperse": "k-", "standard": "k--"}
     for law in VARIANTS:
-        t, s = segregation_series(law, root)
+        t, s, source = segregation_series(law, root)
         if not t:
             if law in DEFAULT_VARIANTS:
                 print(f"{law}: no samples yet")
             continue
         hard = law.endswith(HARD_SPHERE)
         style = styles[law[:-len(HARD_SPHERE)] if hard else law].replace("k", "C1" if hard else "k")
-        run_ = segregation_run(law, 1, root)
-        write_series(os.path.join(root, "results", f"{law}.csv"), t, s)
+        if source == "run":
+            write_series(os.path.join(root, "results", f"{law}.csv"), t, s)
+            cost = f"{clock(segregation_run(law, 1, root).cpu_seconds())} processor time"
+        else:
+            cost = f"from results/{law}.csv, the run's directory gone"
         reached = ", ".join(f"s({x:g} s) = {value_at(t, s, x):.3f}" for x in REPORT_TIMES if x <= t[-1] + 1e-9)
-        print(f"{law}: t = {t[-1]:g} s reached ({clock(run_.cpu_seconds())} processor time); {reached}")
+        print(f"{law}: t = {t[-1]:g} s reached ({cost}); {reached}{late_statistics(t, s)}")
         for ax in (whole, reached_axes):
             ax.plot(t, s, style, label=f"TFDEM, {law.replace(HARD_SPHERE, '')} drag" + (", hard spheres" if hard else ""))
         reached_end = max(reached_end, t[-1])
