@@ -83,15 +83,31 @@ Foam::TfdemCoupling::TfdemCoupling
     tfdemChecks::gasProperties(config_, rho, nu);
     grid_ = discoverGrid(mesh);
     tfdemChecks::twoDimensionalDepth(config_, grid_.grid);
-    core_.reset
-    (
-        new tfdem::DistributedCoupling
+    try
+    {
+        core_.reset
         (
-            MPI_COMM_WORLD, grid_.grid, grid_.ownerOfGridCell, grid_.gridCellOfCell,
-            std::vector<double>(grid_.gridCellOfCell.size(), grid_.grid.cell_volume()),
-            config_.void_fraction, config_.transfer
-        )
-    );
+            new tfdem::DistributedCoupling
+            (
+                MPI_COMM_WORLD, grid_.grid, grid_.ownerOfGridCell, grid_.gridCellOfCell,
+                std::vector<double>(grid_.gridCellOfCell.size(), grid_.grid.cell_volume()),
+                config_.void_fraction, config_.transfer
+            )
+        );
+    }
+    catch (const std::invalid_argument& e)
+    {
+        FatalErrorInFunction
+            << "errors in " << configFile << ":\n" << e.what() << exit(FatalError);
+    }
+    if (config_.void_fraction.diffusion_bandwidth > 0)
+    {
+        const double b = config_.void_fraction.diffusion_bandwidth;
+        Info<< "TFDEM diffusion smoothing: the particle fields spread with bandwidth b = " << b
+            << " m (standard deviation b/sqrt(2) = " << b/std::sqrt(2.0) << " m, "
+            << b/grid_.grid.spacing[0] << " cells in x, " << b/grid_.grid.spacing[1]
+            << " in y)" << endl;
+    }
     startDem(g.value());
     tfdemChecks::particles(config_, *dem_);
     tfdemChecks::packing(*dem_, g.value(), !checkpoint_.resuming());

@@ -308,6 +308,30 @@ drag::Gas read_gas(ConfigSection &section) {
   return gas;
 }
 
+// A positive length in metres under `key` (0 when absent): a bare number, since a unit such as
+// '1 cm' or a multiple of the diameter would be read as something else.
+double read_length(ConfigSection &section, const std::string &key) {
+  if (!section.has(key)) return 0.0;
+  const std::string text = section.text(key, "");
+  double value = 0.0;
+  std::size_t used = 0;
+  try {
+    value = std::stod(text, &used);
+  } catch (const std::exception &) {
+    used = 0;
+  }
+  if (used == 0 || used != text.size() || !std::isfinite(value)) {
+    section.report(key, "must be a length in metres, a plain number (e.g. 0.01 for 1 cm), got '" + text + "'");
+    return 0.0;
+  }
+  if (!(value > 0.0)) {
+    section.report(key, "value " + text + " is not a bandwidth: give a length above 0 in metres (3-6 particle "
+                        "diameters), or leave the key out for no smoothing");
+    return 0.0;
+  }
+  return value;
+}
+
 VoidFractionOptions read_void_fraction(ConfigSection &section) {
   VoidFractionOptions o;
   o.method = void_fraction_method_from_name(section.choice("method", "centroid", void_fraction_method_names()));
@@ -319,6 +343,7 @@ VoidFractionOptions read_void_fraction(ConfigSection &section) {
     section.report("floor", "value 1 leaves no room for particles: the floor must be below 1 (e.g. 0.3)");
     o.void_fraction_floor = 0.0;
   }
+  o.diffusion_bandwidth = read_length(section, "diffusion_bandwidth");
   section.reject_unknown_keys();
   return o;
 }
@@ -427,6 +452,11 @@ CouplingConfig parse_coupling_config(const std::string &file, const std::string 
   c.void_fraction_time_derivative = coupling.boolean("void_fraction_time_derivative", true);
   ConfigSection void_fraction = coupling.section("void_fraction");
   c.void_fraction = read_void_fraction(void_fraction);
+  if (c.void_fraction.diffusion_bandwidth > 0.0 && c.transfer.method == TransferMethod::Averaged)
+    void_fraction.report("diffusion_bandwidth", "the spread fields need a per-particle transfer: 'averaged' shares a "
+                                                "cell's drag among the particles in that cell, and a spread cell holds "
+                                                "solids of particles in other cells; use transfer: "
+                                                "per_particle_conservative");
   coupling.reject_unknown_keys();
   ConfigSection output = root.section("output");
   c.output = read_output(output);
@@ -494,8 +524,10 @@ std::string describe(const CouplingConfig &c) {
     << "    cube_factor: " << c.void_fraction.cube_factor << "\n"
     << "    divided_points_per_diameter: " << c.void_fraction.divided_points_per_diameter << "\n"
     << "    two_dimensional: " << (c.void_fraction.two_dimensional ? "true" : "false") << "\n"
-    << "    floor: " << c.void_fraction.void_fraction_floor << "\n"
-    << "output:\n  statistics_interval: " << c.output.statistics_interval << "\n"
+    << "    floor: " << c.void_fraction.void_fraction_floor << "\n";
+  if (c.void_fraction.diffusion_bandwidth > 0.0)
+    s << "    diffusion_bandwidth: " << c.void_fraction.diffusion_bandwidth << "\n";
+  s << "output:\n  statistics_interval: " << c.output.statistics_interval << "\n"
     << "  particles_vtk: " << (c.output.particles_vtk ? "true" : "false") << "\n";
   return s.str();
 }

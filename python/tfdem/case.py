@@ -139,6 +139,12 @@ class Grid:
     def upper(self, axis):
         return self.origin[axis] + self.spacing[axis] * self.counts[axis]
 
+    def centre_of_cell_at(self, axis, x):
+        """The centre coordinate, along axis, of the cell holding x (a probe samples its cell's
+        value, so a gradient between probes is taken between their cells' centres)."""
+        index = min(max(int((x - self.origin[axis]) // self.spacing[axis]), 0), self.counts[axis] - 1)
+        return self.origin[axis] + (index + 0.5) * self.spacing[axis]
+
 
 def _expand_variables(text):
     """Top-level ``name value;`` entries substituted for ``$name`` (blockMeshDict macros)."""
@@ -235,6 +241,17 @@ class Case:
     def probe_locations(self, function):
         """[(x, y, z)] of a probes function object of system/controlDict."""
         return _points(self.function_entry(function, "probeLocations")[1:-1])
+
+    def set_probe_locations(self, function, points):
+        """Replace the probeLocations of a probes function object of system/controlDict."""
+        path = self.file("system", "controlDict")
+        text = _read(path)
+        old = self.function_entry(function, "probeLocations")
+        start = text.find(old)
+        if start < 0:
+            raise CaseError(f"{path}: cannot rewrite the probeLocations of function '{function}'")
+        written = "(" + " ".join(f"({' '.join(f'{v:g}' for v in p)})" for p in points) + ")"
+        _write(path, text[:start] + written + text[start + len(old):])
 
     def patch_value(self, field, patch, time="0"):
         """The `value uniform ...` of a patch of a field file (e.g. 0/U inlet): a float or an

@@ -18,7 +18,7 @@ of d).
 The packed bed is written at rest: every velocity and spin set to zero (what the pour leaves
 is contact vibration and rattlers, up to a few cm/s and hundreds of rad/s for 1 mm spheres),
 and its largest overlap, a fraction of the smaller diameter of the pair, is printed and must
-stay below MAX_OVERLAP (the poured beds of the tutorials: 0.17 % for 800 beads of 1 mm, 2.6 %
+stay below MAX_OVERLAP (the poured beds of the tutorials: 0.17 % for 800 beads of 1 mm, 2.2 %
 for Goldschmidt's 45,000 spheres 45 layers deep under the pour's k_n of 800 N/m).
 """
 import argparse

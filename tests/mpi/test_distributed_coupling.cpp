@@ -173,6 +173,42 @@ Reference serial(const Bed &b, const VoidFractionOptions &vf, const TransferOpti
   return ref;
 }
 
+// This rank's share of a bed: cells to ranks by row (y), or every cell on every rank in
+// reversed order; particles to ranks by column (x).
+struct Partition {
+  std::vector<int> owner, owned;
+  std::vector<double> volume, velocity, gradient;
+  Bed mine;
+  std::vector<std::size_t> index;  // each local particle's index in the whole bed
+  Partition(const Bed &b, bool whole) : mine(b) {
+    const int n = b.grid.cell_count();
+    owner.resize(n);
+    for (int k = 0; k < n; ++k) {
+      const int g = whole ? n - 1 - k : k;
+      owner[g] = whole ? CellExchange::kEveryRank : (g / b.grid.count[0]) * ranks() / b.grid.count[1];
+      if (!whole && owner[g] != rank()) continue;
+      owned.push_back(g);
+      volume.push_back(b.cell_volume[g]);
+      for (int a = 0; a < 3; ++a) {
+        velocity.push_back(b.cell_velocity[3 * g + a]);
+        gradient.push_back(b.cell_gradient[3 * g + a]);
+      }
+    }
+    mine.position.clear(), mine.velocity.clear(), mine.diameter.clear(), mine.density.clear();
+    for (std::size_t i = 0; i < b.diameter.size(); ++i) {
+      const int column = static_cast<int>(b.position[3 * i] / 0.06 * ranks());
+      if (std::min(column, ranks() - 1) != rank()) continue;
+      index.push_back(i);
+      for (int a = 0; a < 3; ++a) {
+        mine.position.push_back(b.position[3 * i + a]);
+        mine.velocity.push_back(b.velocity[3 * i + a]);
+      }
+      mine.diameter.push_back(b.diameter[i]);
+      mine.density.push_back(b.density[i]);
+    }
+  }
+};
+
 TEST_P(DistributedCouplingTest, EqualsSerialCore) {
   const Bed b;
   VoidFractionOptions vf;
@@ -185,39 +221,13 @@ TEST_P(DistributedCouplingTest, EqualsSerialCore) {
   to.law = drag::Law::ErgunWenYu;
   const Reference ref = serial(b, vf, to);
 
-  // Cells to ranks by row (y), or every cell on every rank in reversed order; particles to
-  // ranks by column (x).
-  const int n = b.grid.cell_count();
+  const Partition part(b, GetParam().gas_whole_on_every_rank);
   const bool whole = GetParam().gas_whole_on_every_rank;
-  std::vector<int> owner(n), owned;
-  std::vector<double> volume, velocity, gradient;
-  for (int k = 0; k < n; ++k) {
-    const int g = whole ? n - 1 - k : k;
-    owner[g] = whole ? CellExchange::kEveryRank : (g / b.grid.count[0]) * ranks() / b.grid.count[1];
-    if (!whole && owner[g] != rank()) continue;
-    owned.push_back(g);
-    volume.push_back(b.cell_volume[g]);
-    for (int a = 0; a < 3; ++a) {
-      velocity.push_back(b.cell_velocity[3 * g + a]);
-      gradient.push_back(b.cell_gradient[3 * g + a]);
-    }
-  }
-  Bed mine = b;
-  std::vector<std::size_t> index;
-  mine.position.clear(), mine.velocity.clear(), mine.diameter.clear(), mine.density.clear();
-  for (std::size_t i = 0; i < b.diameter.size(); ++i) {
-    const int column = static_cast<int>(b.position[3 * i] / 0.06 * ranks());
-    if (std::min(column, ranks() - 1) != rank()) continue;
-    index.push_back(i);
-    for (int a = 0; a < 3; ++a) {
-      mine.position.push_back(b.position[3 * i + a]);
-      mine.velocity.push_back(b.velocity[3 * i + a]);
-    }
-    mine.diameter.push_back(b.diameter[i]);
-    mine.density.push_back(b.density[i]);
-  }
-
-  DistributedCoupling coupling(MPI_COMM_WORLD, b.grid, owner, owned, volume, vf, to);
+  const std::vector<int> &owned = part.owned;
+  const std::vector<std::size_t> &index = part.index;
+  const std::vector<double> &velocity = part.velocity, &gradient = part.gradient;
+  const Bed &mine = part.mine;
+  DistributedCoupling coupling(MPI_COMM_WORLD, b.grid, part.owner, owned, part.volume, vf, to);
   coupling.map(mine.view());
   coupling.forces(mine.view(), velocity.data(), gradient.data());
   if (ranks() > 1 && !whole) EXPECT_GT(coupling.exchange().remote_records(), 0u) << "no particle in another rank's cell";
@@ -267,6 +277,60 @@ INSTANTIATE_TEST_SUITE_P(
                            drag::Polydispersity::OwnDiameter, true},
                       Case{VoidFractionMethod::Divided, TransferMethod::PerParticleConservative, GasAtParticle::Cell,
                            drag::Polydispersity::OwnDiameter, true}));
+
+// With a diffusion bandwidth (1.5 cm on the 6 x 8 cm bed), cells split or whole: every rank's
+// cells and particles get what one rank with the whole bed gets; that rank's gas fraction is
+// 1 - the serial map's solid volume spread by DiffusionSmoothing / V_c; the spread keeps the
+// solids' volume and, conservative, Newton's third law.
+TEST(DistributedCoupling, DiffusionSpreadOnRanksEqualsOneRank) {
+  const Bed b;
+  VoidFractionOptions vf;
+  vf.two_dimensional = true;
+  vf.diffusion_bandwidth = 0.015;
+  const VoidFraction raw = map_void_fraction(compute_weights(b.grid, b.view(), vf), b.view(), b.cell_volume, 0.0);
+  std::vector<double> spread_solids = raw.solid_volume, scratch;
+  DiffusionSmoothing(b.grid, vf.diffusion_bandwidth).spread(spread_solids.data(), 1, scratch);
+  const int n = b.grid.cell_count();
+  std::vector<int> all(n);
+  for (int g = 0; g < n; ++g) all[g] = g;
+  for (const TransferMethod method : {TransferMethod::PerParticleConservative, TransferMethod::PerParticle})
+    for (const bool whole : {false, true}) {
+      TransferOptions to;
+      to.method = method;
+      DistributedCoupling one(MPI_COMM_SELF, b.grid, std::vector<int>(n, 0), all, b.cell_volume, vf, to);
+      one.map(b.view());
+      one.forces(b.view(), b.cell_velocity.data(), b.cell_gradient.data());
+      double largest_change = 0.0;
+      for (int g = 0; g < n; ++g) {
+        EXPECT_NEAR(one.void_fraction()[g], 1.0 - spread_solids[g] / b.cell_volume[g], 1e-14) << "cell " << g;
+        largest_change = std::max(largest_change, std::abs(one.void_fraction()[g] - raw.void_fraction[g]));
+      }
+      EXPECT_GT(largest_change, 0.05) << "the spread changed no cell's gas fraction";
+
+      const Partition part(b, whole);
+      DistributedCoupling coupling(MPI_COMM_WORLD, b.grid, part.owner, part.owned, part.volume, vf, to);
+      coupling.map(part.mine.view());
+      coupling.forces(part.mine.view(), part.velocity.data(), part.gradient.data());
+      for (std::size_t l = 0; l < part.owned.size(); ++l) {
+        const int g = part.owned[l];
+        EXPECT_NEAR(coupling.void_fraction()[l], one.void_fraction()[g], 1e-14) << "cell " << g;
+        EXPECT_LT(relative(coupling.exchange_coefficient()[l], one.exchange_coefficient()[g],
+                           std::max(1.0, std::abs(one.exchange_coefficient()[g]))), 1e-12);
+        for (int a = 0; a < 3; ++a)
+          EXPECT_NEAR(coupling.solid_velocity()[3 * l + a], one.solid_velocity()[3 * g + a], 1e-12);
+      }
+      double force_scale = 0.0;
+      for (double f : one.particle_force()) force_scale = std::max(force_scale, std::abs(f));
+      for (std::size_t k = 0; k < part.index.size(); ++k)
+        for (int a = 0; a < 3; ++a)
+          EXPECT_LT(relative(coupling.particle_force()[3 * k + a], one.particle_force()[3 * part.index[k] + a],
+                             force_scale), 1e-12) << "particle " << part.index[k];
+      const CouplingTotals &t = coupling.totals();
+      EXPECT_LT(std::abs(t.mapped_volume - t.particle_volume) / t.particle_volume, 1e-13);
+      if (method == TransferMethod::PerParticleConservative)
+        for (int a = 0; a < 3; ++a) EXPECT_LT(std::abs(t.momentum_imbalance[a]), 1e-12 * t.drag_magnitude_sum);
+    }
+}
 
 // Under the 2-D rule the fluid force has no z component even where the gas data have one
 // (round-off of a 2-D gas solution); in 3-D the z component is kept.

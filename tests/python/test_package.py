@@ -12,7 +12,7 @@ import numpy
 
 from tfdem.batch import variants_command_line
 from tfdem.bubble import coloured_above, find_bubble
-from tfdem.case import Case, CaseError, DemScript, set_yaml_value
+from tfdem.case import Case, CaseError, DemScript, Grid, set_yaml_value
 from tfdem.engines import ScriptError, hard_sphere_laws, restitution_of_damping
 from tfdem.outputs import OutputError, dump_frames, fix_print, joined_series
 from tfdem.packing import at_rest, largest_overlap, packing_settings, set_atom_types, to_mid_plane
@@ -351,6 +351,17 @@ def main():
     except SystemExit as stop:
         code = stop.code
     check("batch driver refuses --end-time 0", code == 2, str(code))
+
+    # Probes rewritten in place, comments and the other entries kept; a probe's cell centre
+    write(case.file("system", "controlDict"), "FoamFile { version 2.0; }\nfunctions\n{\n  pressure\n  {\n"
+          "    type probes; // p\n    probeLocations  ((0 0.0255 0) (0 0.1785 0));\n  }\n}\n")
+    case.set_probe_locations("pressure", [(0, 0.0255, 0), (0, 0.1785, 0), (0.001, 0.07, 0.5)])
+    check("probe locations rewritten", case.probe_locations("pressure") ==
+          [(0, 0.0255, 0), (0, 0.1785, 0), (0.001, 0.07, 0.5)] and "// p" in open(case.file("system", "controlDict")).read())
+    grid = Grid((0, 0.01, 0), (1, 0.002, 1), (1, 100, 1))
+    check("the centre of the cell holding y = 0.0735 is 0.073 (cells of 2 mm from 0.01 m)",
+          abs(grid.centre_of_cell_at(1, 0.0735) - 0.073) < 1e-15, str(grid.centre_of_cell_at(1, 0.0735)))
+    check("a point past the grid takes its last cell's centre", abs(grid.centre_of_cell_at(1, 0.5) - 0.209) < 1e-15)
 
     check_hard_sphere_laws(root)
     check_contact_definitions(root)

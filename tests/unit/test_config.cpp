@@ -245,6 +245,38 @@ TEST(Config, GasVelocityAtParticle) {
   EXPECT_TRUE(contains(p, "coupling.gas_velocity_at_particle: 'interpolated' applies to the per-particle transfers")) << p[0];
 }
 
+// The diffusion smoothing's bandwidth: a length in metres above 0, with a per-particle
+// transfer; left out, none; kept by describe().
+TEST(Config, DiffusionBandwidth) {
+  const auto with = [](const std::string &value) {
+    return replaced(kValid, "    floor: 0.3", "    floor: 0.3\n    diffusion_bandwidth: " + value);
+  };
+  EXPECT_DOUBLE_EQ(parse_coupling_config("coupling.yaml", with("0.01")).void_fraction.diffusion_bandwidth, 0.01);
+  EXPECT_DOUBLE_EQ(parse_coupling_config("coupling.yaml", kValid).void_fraction.diffusion_bandwidth, 0.0);
+  const std::string described = describe(parse_coupling_config("coupling.yaml", with("0.0125")));
+  EXPECT_DOUBLE_EQ(parse_coupling_config("described.yaml", described).void_fraction.diffusion_bandwidth, 0.0125);
+  for (const std::string bad : {"0", "-0.01"}) {
+    const auto p = problems_of(with(bad));
+    ASSERT_EQ(p.size(), 1u) << bad;
+    EXPECT_TRUE(contains(p, "coupling.void_fraction.diffusion_bandwidth: value " + bad +
+                                " is not a bandwidth: give a length above 0 in metres"))
+        << p[0];
+  }
+  for (const std::string bad : {"1 cm", "4 d_p", ".nan"}) {
+    const auto p = problems_of(with(bad));
+    ASSERT_EQ(p.size(), 1u) << bad;
+    EXPECT_TRUE(contains(p, "coupling.void_fraction.diffusion_bandwidth: must be a length in metres, a plain number "
+                            "(e.g. 0.01 for 1 cm), got '" + bad + "'"))
+        << p[0];
+  }
+  const auto averaged = problems_of(replaced(with("0.01"), "transfer: per_particle", "transfer: averaged"));
+  ASSERT_EQ(averaged.size(), 1u);
+  EXPECT_TRUE(contains(averaged, "coupling.void_fraction.diffusion_bandwidth: the spread fields need a per-particle "
+                                 "transfer"))
+      << averaged[0];
+  EXPECT_TRUE(contains(averaged, "use transfer: per_particle_conservative")) << averaged[0];
+}
+
 // A mixture lists its sizes (sorted); a bad entry is named; Beetstra's polydisperse drag needs a
 // per-particle transfer.
 TEST(Config, MixtureSizesAndPolydisperseDrag) {

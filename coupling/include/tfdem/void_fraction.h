@@ -43,6 +43,7 @@ struct VoidFractionOptions {
   int divided_points_per_diameter = 6;  // sample lattice of the divided method (even: none on a face)
   bool two_dimensional = false;       // seed 000's one-layer rule
   double void_fraction_floor = 0.0;    // eps_g never below this (0 = no floor)
+  double diffusion_bandwidth = 0.0;    // b (m) of diffusion_smoothing.h's spread of the cell sums (0 = none)
 };
 
 // Particle-to-cell weights in compressed rows: particle p's share w of its volume goes to
