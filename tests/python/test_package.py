@@ -15,7 +15,7 @@ from tfdem.bubble import coloured_above, find_bubble
 from tfdem.case import Case, CaseError, DemScript, Grid, set_yaml_value
 from tfdem.engines import ScriptError, hard_sphere_laws, restitution_of_damping
 from tfdem.outputs import OutputError, dump_frames, fix_print, joined_series
-from tfdem.packing import at_rest, largest_overlap, packing_settings, set_atom_types, to_mid_plane
+from tfdem.packing import at_rest, largest_overlap, packing_settings, script_stiffness, set_atom_types, to_mid_plane
 from tfdem.physics import slab_solid_fraction
 from tfdem.run import command
 from tfdem.stats import batch_means
@@ -362,6 +362,15 @@ def main():
     check("the centre of the cell holding y = 0.0735 is 0.073 (cells of 2 mm from 0.01 m)",
           abs(grid.centre_of_cell_at(1, 0.0735) - 0.073) < 1e-15, str(grid.centre_of_cell_at(1, 0.0735)))
     check("a point past the grid takes its last cell's centre", abs(grid.centre_of_cell_at(1, 0.5) - 0.209) < 1e-15)
+
+    # The run's softest contact (the pour's overlap bound is waived when the run is no stiffer)
+    stiff = Case(os.path.join(root, "stiff"))
+    write(stiff.file("coupling.yaml"), "dem:\n  script: in.bed\n")
+    write(stiff.file("in.bed"), "variable kw equal 2*600\nfix m1 all property/global kn peratomtypepair 2 900 ${kw} "
+          "${kw} 1500\n")
+    check("the script's softest k_n by hand: 900 N/m", script_stiffness(stiff) == 900.0, str(script_stiffness(stiff)))
+    write(stiff.file("in.bed"), "units si\n")
+    check("a script without k_n: none", script_stiffness(stiff) is None)
 
     check_hard_sphere_laws(root)
     check_contact_definitions(root)

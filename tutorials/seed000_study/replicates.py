@@ -30,7 +30,6 @@ METRICS = (("dp20", "Δp at 20 cm", "Pa", 1.0), ("mean_height", "mean particle h
 BATCH_LENGTHS = (0.01, 0.02, 0.05, 0.1, 0.2, 0.5, 1.0, 1.5, 2.5, 3.75)  # s, of a 20 s run (scaled with it)
 PLATEAU_FROM = 1.5  # s: the blocking curve's plateau is its mean from this batch length on
 METHOD_PAIRS = (("jet_m1", "jet_m2"), ("jet_fine_m1", "jet_fine_m2"), ("uniform_m1", "uniform_m2"))
-GRID_PAIRS = (("jet_m1", "jet_fine_m1"), ("jet_m2", "jet_fine_m2"))
 DIFFERENCE_QUANTITIES = (("dp20", "mean"), ("dp20", "std"), ("mean_height", "mean"), ("bulk_coordination", "mean"),
                          ("multicontact", "mean"))
 RESOLVED = 2.0  # a difference is resolved when it is at least this many standard errors from zero
@@ -39,6 +38,22 @@ MAP_DEPTH = 0.45  # m: the maps are compared over the cells below this height (t
 # (README "Results"); its run folder was not kept and it ran at the former steps (DEM t_c/75,
 # gas 0.2 ms), the realizations at the templates' current ones. Used only while no record of
 # jet_m1 is in results/; a lattice run of the current settings replaces it.
+REFINEMENTS = ("refine_x", "refine_y")
+
+
+def grid_pairs(runs, configs):
+    """(coarser, finer) pairs of the configurations that differ in their cells alone (study.yaml's
+    refine_x, refine_y), e.g. jet_m1 and jet_fine_m1."""
+    def cells(spec):
+        return spec.get("refine_x", 1) * spec.get("refine_y", 1)
+
+    def rest(spec):
+        return {k: v for k, v in spec.items() if k not in REFINEMENTS}
+
+    return tuple(sorted((a, b) for a in configs for b in configs
+                        if rest(runs[a]) == rest(runs[b]) and cells(runs[a]) < cells(runs[b])))
+
+
 EARLIER_LATTICE_JET_NC = {"mean": 1.42, "error": 0.01, "window": "5-10",
                           "source": "README before the realizations: jet_m1 on the lattice packing, DEM t_c/75, "
                                     "gas step 0.2 ms; run folder not kept"}
@@ -173,15 +188,18 @@ class Replicates:
                         "plateau": plateau, "at_batch_over_plateau": at_batch / plateau}
         return out
 
+    def grid_pairs(self):
+        return grid_pairs(self.report.study["runs"], list(self.groups))
+
     # Maps -----------------------------------------------------------------------------------
     def maps(self, config, w, symmetric):
         """The realizations' time-averaged solids fraction over window w on the coarse cells
         (a refined run's averaged onto them), and the number of rows below MAP_DEPTH."""
-        refine = self.report.study["runs"][config].get("refine_y", 1)
+        spec = self.report.study["runs"][config]
         out = []
         for name in self.groups[config]:
             record = self.report.records[name]
-            shape = (record.shape[0] // refine, record.shape[1])
+            shape = (record.shape[0] // spec.get("refine_y", 1), record.shape[1] // spec.get("refine_x", 1))
             field = to_grid(record.window_map("solids", *map(float, w.split("-"))), shape)
             out.append(mirror_mean(field) if symmetric else field)
         rows = int((to_grid(record.y, shape)[:, 0] < MAP_DEPTH).sum())
@@ -194,7 +212,7 @@ class Replicates:
                 for config in self.groups:
                     maps, rows = self.maps(config, w, symmetric)
                     floors.setdefault(config, {})[w + tag] = l1_noise_floor(maps, rows)
-                for a, b in METHOD_PAIRS + GRID_PAIRS:
+                for a, b in METHOD_PAIRS + self.grid_pairs():
                     if a in self.groups and b in self.groups:
                         (ma, rows), (mb, _) = self.maps(a, w, symmetric), self.maps(b, w, symmetric)
                         cross = cross_l1(ma, mb, rows)
@@ -207,10 +225,10 @@ class Replicates:
 
     # Differences ----------------------------------------------------------------------------
     def differences(self, ensembles):
-        """b - a of the ensemble means for METHOD_PAIRS (method 2 - method 1) and GRID_PAIRS
+        """b - a of the ensemble means for METHOD_PAIRS (method 2 - method 1) and grid_pairs
         (fine - coarse), each with its error and its size in errors."""
         out = {}
-        for kind, pairs in (("method 2 - method 1", METHOD_PAIRS), ("fine - coarse", GRID_PAIRS)):
+        for kind, pairs in (("method 2 - method 1", METHOD_PAIRS), ("fine - coarse", self.grid_pairs())):
             for a, b in pairs:
                 if a not in ensembles or b not in ensembles:
                     continue

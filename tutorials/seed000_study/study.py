@@ -34,7 +34,7 @@ class StudyError(Exception):
     """A study definition or run problem, named."""
 
 
-RUN_KEYS = ("bed", "coupling", "refine_y", "tfm")
+RUN_KEYS = ("bed", "coupling", "refine_x", "refine_y", "tfm")
 
 
 def load_study(path=os.path.join(STUDY_DIR, "study.yaml")):
@@ -53,6 +53,8 @@ def load_study(path=os.path.join(STUDY_DIR, "study.yaml")):
                 near = difflib.get_close_matches(key, RUN_KEYS, 1)
                 raise StudyError(f"{path}: run {name}: unknown key '{key}'"
                                  + (f" (did you mean '{near[0]}'?)" if near else "") + f"; valid: {', '.join(RUN_KEYS)}")
+        if spec.get("tfm") and spec.get("refine_x", 1) != 1:
+            raise StudyError(f"{path}: run {name}: refine_x is for the coupled runs; the TFM template refines y only")
     study["runs"] = with_realizations(study, path)
     return study
 
@@ -108,19 +110,29 @@ class Run(CaseRun):
         self.set_status(state="prepared", end_time=end_time)
         self.case.set_control(endTime=end_time, writeInterval=self.write_interval(end_time), startFrom="startTime",
                               writePrecision=17)
-        refine = self.spec.get("refine_y", 1)
         if self.tfm:
-            self._prepare_tfm(refine)
+            self._prepare_tfm(self.spec.get("refine_y", 1))
         else:
-            self._prepare_coupled(refine, end_time)
+            self._prepare_coupled(end_time)
         self._write_probes()
 
-    def _prepare_coupled(self, refine, end_time):
+    def refinement(self):
+        """(x, y) factors of the template's cells (1 x 2 cm jet: (2, 4) gives 0.5 x 0.5 cm)."""
+        return self.spec.get("refine_x", 1), self.spec.get("refine_y", 1)
+
+    def _prepare_coupled(self, end_time):
         case = self.case
+        refine = max(self.refinement())
+        for axis, factor in enumerate(self.refinement()):
+            if factor != 1:
+                case.scale_cells(axis, factor)
         if refine != 1:
-            case.scale_cells(1, refine)
-            # the same Courant number on the finer cells (the gas step rule, scene_check.h)
-            case.set_time_steps(gas=case.delta_t() / refine)
+            # the same Courant number on the finer cells (the gas step rule, scene_check.h),
+            # rounded down to a whole number of DEM steps that divides the statistics interval
+            dem = case.dem_time_step()
+            interval = round(self.study["statistics_interval"] / dem)
+            steps = max(n for n in range(1, max(1, int(case.delta_t() / refine / dem + 1e-9)) + 1) if interval % n == 0)
+            case.set_time_steps(gas=dem * steps)
         for key, value in self.spec.get("coupling", {}).items():
             case.set_coupling(key, value)
         case.set_coupling("output.statistics_interval", self.study["statistics_interval"])
@@ -193,7 +205,7 @@ def selected_runs(study, names, root):
         runs = [r for r in runs if r.name in names]
     # the longest first, so the two cores finish together: the jet bed's (fine grid first, its
     # TFM as long as its coarse TF-DEM), then the uniform bed's (its TFM the shortest)
-    return sorted(runs, key=lambda r: (r.bed != "jet", -r.spec.get("refine_y", 1), r.tfm and r.bed != "jet"))
+    return sorted(runs, key=lambda r: (r.bed != "jet", -r.refinement()[0] * r.refinement()[1], r.tfm and r.bed != "jet"))
 
 
 def main(argv=None):
