@@ -78,14 +78,16 @@ void DiffusionSmoothing::spread(double *values, int components, std::vector<doub
     if (kernel_[a].empty()) continue;
     const int n = grid_.count[a];
     const double *kernel = kernel_[a].data();
+    const std::size_t step = stride[a] * components;  // between a line's neighbours, in values
     for (std::size_t c = 0; c < cells; ++c) {
       const int i = static_cast<int>((c / stride[a]) % n);  // c's index along the axis
       const std::size_t line = c - i * stride[a];           // the line's first cell
+      const double *row = &kernel[static_cast<std::size_t>(i) * n];
       const int first = band_first_[a][i], last = band_last_[a][i];
       for (int m = 0; m < components; ++m) {
+        const double *in = &values[line * components + m];
         double sum = 0.0;
-        for (int j = first; j <= last; ++j)
-          sum += kernel[static_cast<std::size_t>(i) * n + j] * values[(line + j * stride[a]) * components + m];
+        for (int j = first; j <= last; ++j) sum += row[j] * in[j * step];
         scratch[c * components + m] = sum;
       }
     }

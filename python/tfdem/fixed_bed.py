@@ -71,11 +71,11 @@ class FixedBed:
         and the slip u_seen, the gas velocity U/eps convolved with the Gaussian, and the gas
         loses their drags per unit volume, phi_raw beta/eps_s u_seen, convolved with the same
         Gaussian: D(y). The steady gas momentum (UEqn.H: eps grad p = -D - eps rho g) gives
-        the drop D / eps integrated between the probes plus the gas weight. For a bed whose edges are sharp on the grid this is
-        below Ergun's three times over: the particles within ~b of an edge see the spread edge's
-        higher gas fraction and the slower gas outside the bed, and the share of their drag
-        spread beyond the edge acts on gas of eps ~ 1 (a drop D / eps for a drag D, where the
-        bed has D / eps_bed)."""
+        the drop D / eps integrated between the probes plus the gas weight. For a bed whose
+        edges are sharp on the grid this is below Ergun's for three reasons: the particles
+        within ~b of an edge see the spread edge's higher gas fraction and the slower gas
+        outside the bed, and the share of their drag spread beyond the edge acts on gas of
+        eps ~ 1 (a drop D / eps for a drag D, where the bed has D / eps_bed)."""
         lo, hi = self.case.mesh_bounds()
         y = numpy.arange(lo[1] + step / 2, hi[1], step)
         inside = (y >= self.bottom) & (y <= self.bottom + self.height)

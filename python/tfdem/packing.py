@@ -285,19 +285,27 @@ def script_stiffness(case):
     if case.hard_sphere():
         return None
     dem = case.dem()
+    words = stiffness_command(dem)
+    if words is None:
+        return None
+    types = int(words[6])
+    return min(dem.value(w) for w in words[7:7 + types * types])
+
+
+def stiffness_command(dem):
+    """The words of the DEM script's `fix ... property/global kn peratomtypepair N ...`, or None."""
     for words in dem.commands("fix"):
         if len(words) > 6 and words[3] == "property/global" and words[4] == "kn" and words[5] == "peratomtypepair":
-            types = int(words[6])
-            return min(dem.value(w) for w in words[7:7 + types * types])
+            return words
     return None
 
 
 def script_type_count(case):
     """The atom types the case's DEM script declares (its property/global kn peratomtypepair N)."""
     case = case if isinstance(case, Case) else Case(case)
-    for words in case.dem().commands("fix"):
-        if len(words) > 6 and words[3] == "property/global" and words[4] == "kn" and words[5] == "peratomtypepair":
-            return int(words[6])
+    words = stiffness_command(case.dem())
+    if words is not None:
+        return int(words[6])
     raise CaseError(f"{case.dem_script()}: no 'fix ... property/global kn peratomtypepair N': the number of atom "
                     "types the packing must declare is not known")
 

@@ -60,6 +60,20 @@ def ar1(phi, n, seed):
     return x
 
 
+def check_refined_runs():
+    # A refined run's gas step: 12.5 DEM steps of 0.02 ms at the target 0.25 ms; the 10 ms
+    # interval is 500 steps, whose largest divisor up to 12 is 10: 0.2 ms
+    from study import whole_gas_step
+    check("gas step on 0.5 x 0.5 cm: 0.2 ms", abs(whole_gas_step(2.5e-4, 2e-5, 0.01) - 2e-4) < 1e-15)
+    check("gas step on 1 x 1 cm: 0.5 ms (25 steps divide 500)", abs(whole_gas_step(5e-4, 2e-5, 0.01) - 5e-4) < 1e-15)
+    # fine-coarse pairs: runs that differ in their cells alone
+    from replicates import grid_pairs
+    runs = {"c": {"bed": "jet"}, "f": {"bed": "jet", "refine_y": 2}, "ff": {"bed": "jet", "refine_x": 2, "refine_y": 4},
+            "m2": {"bed": "jet", "coupling": {"coupling.transfer": "per_particle"}}}
+    check("grid pairs: coarse-fine, coarse-finest, fine-finest, no other", grid_pairs(runs, list(runs)) ==
+          (("c", "f"), ("c", "ff"), ("f", "ff")), str(grid_pairs(runs, list(runs))))
+
+
 def check_ensemble():
     # 1, 2, 3, 4: mean 2.5, sample variance (2.25 + 0.25 + 0.25 + 2.25) / 3 = 5/3
     e = ensemble([1, 2, 3, 4])
@@ -260,6 +274,7 @@ def check_record(root):
 
 def main():
     root = tempfile.mkdtemp()
+    check_refined_runs()
     check_ensemble()
     check_blocking()
     check_autocorrelation()
