@@ -66,6 +66,16 @@ def check_refined_runs():
     from study import whole_gas_step
     check("gas step on 0.5 x 0.5 cm: 0.2 ms", abs(whole_gas_step(2.5e-4, 2e-5, 0.01) - 2e-4) < 1e-15)
     check("gas step on 1 x 1 cm: 0.5 ms (25 steps divide 500)", abs(whole_gas_step(5e-4, 2e-5, 0.01) - 5e-4) < 1e-15)
+    # a refinement that is not a whole number of cells is refused, naming the run and the key
+    from study import StudyError, load_study
+    bad = os.path.join(tempfile.mkdtemp(), "study.yaml")
+    with open(bad, "w") as f:
+        f.write("beds: {jet: {template: jet_bed}}\nruns:\n  jet_half: {bed: jet, refine_x: 1.5}\n")
+    try:
+        load_study(bad)
+        check("refine_x 1.5 refused", False)
+    except StudyError as e:
+        check("refine_x 1.5 refused", "run jet_half: refine_x must be a whole number" in str(e) and "1.5" in str(e), str(e))
     # fine-coarse pairs: runs that differ in their cells alone
     from replicates import grid_pairs
     runs = {"c": {"bed": "jet"}, "f": {"bed": "jet", "refine_y": 2}, "ff": {"bed": "jet", "refine_x": 2, "refine_y": 4},

@@ -53,6 +53,10 @@ def load_study(path=os.path.join(STUDY_DIR, "study.yaml")):
                 near = difflib.get_close_matches(key, RUN_KEYS, 1)
                 raise StudyError(f"{path}: run {name}: unknown key '{key}'"
                                  + (f" (did you mean '{near[0]}'?)" if near else "") + f"; valid: {', '.join(RUN_KEYS)}")
+        for key in ("refine_x", "refine_y"):
+            if key in spec and not (isinstance(spec[key], int) and spec[key] >= 1):
+                raise StudyError(f"{path}: run {name}: {key} must be a whole number of cells per template cell, "
+                                 f"1 or more, got {spec[key]!r}")
         if spec.get("tfm") and spec.get("refine_x", 1) != 1:
             raise StudyError(f"{path}: run {name}: refine_x is for the coupled runs; the TFM template refines y only")
     study["runs"] = with_realizations(study, path)
