@@ -108,6 +108,14 @@ Foam::TfdemCoupling::TfdemCoupling
             << b/grid_.grid.spacing[0] << " cells in x, " << b/grid_.grid.spacing[1]
             << " in y)" << endl;
     }
+    const std::array<int, 3>& block = config_.void_fraction.particle_field_block;
+    if (block != std::array<int, 3>{1, 1, 1})
+    {
+        Info<< "TFDEM particle field on blocks of " << block[0] << " x " << block[1] << " x "
+            << block[2] << " gas cells (" << block[0]*grid_.grid.spacing[0] << " x "
+            << block[1]*grid_.grid.spacing[1] << " x " << block[2]*grid_.grid.spacing[2]
+            << " m), interpolated back to the gas cells" << endl;
+    }
     startDem(g.value());
     tfdemChecks::particles(config_, *dem_);
     tfdemChecks::packing(*dem_, g.value(), !checkpoint_.resuming());

@@ -332,6 +332,24 @@ double read_length(ConfigSection &section, const std::string &key) {
   return value;
 }
 
+// Three whole numbers >= 1 under `key` (gas cells per particle-field cell along x, y, z);
+// 1, 1, 1 when absent. Whether they divide the gas grid is the filter's check (the grid is the
+// mesh's).
+std::array<int, 3> read_block(ConfigSection &section, const std::string &key) {
+  std::array<int, 3> block{1, 1, 1};
+  if (!section.has(key)) return block;
+  const std::vector<double> values = section.number_list(key, 1, 1e6);
+  bool whole = values.size() == 3;
+  for (double v : values) whole = whole && v == std::floor(v);
+  if (!whole) {
+    section.report(key, "must be three whole numbers of 1 or more, the gas cells per particle-field cell along x, "
+                        "y and z (e.g. [1, 2, 1]: the particle field on cells twice the gas cells' height)");
+    return block;
+  }
+  for (int a = 0; a < 3; ++a) block[a] = static_cast<int>(values[a]);
+  return block;
+}
+
 VoidFractionOptions read_void_fraction(ConfigSection &section) {
   VoidFractionOptions o;
   o.method = void_fraction_method_from_name(section.choice("method", "centroid", void_fraction_method_names()));
@@ -344,6 +362,7 @@ VoidFractionOptions read_void_fraction(ConfigSection &section) {
     o.void_fraction_floor = 0.0;
   }
   o.diffusion_bandwidth = read_length(section, "diffusion_bandwidth");
+  o.particle_field_block = read_block(section, "particle_field_block");
   section.reject_unknown_keys();
   return o;
 }
@@ -452,11 +471,11 @@ CouplingConfig parse_coupling_config(const std::string &file, const std::string 
   c.void_fraction_time_derivative = coupling.boolean("void_fraction_time_derivative", true);
   ConfigSection void_fraction = coupling.section("void_fraction");
   c.void_fraction = read_void_fraction(void_fraction);
-  if (c.void_fraction.diffusion_bandwidth > 0.0 && c.transfer.method == TransferMethod::Averaged)
-    void_fraction.report("diffusion_bandwidth", "the spread fields need a per-particle transfer: 'averaged' shares a "
-                                                "cell's drag among the particles in that cell, and a spread cell holds "
-                                                "solids of particles in other cells; use transfer: "
-                                                "per_particle_conservative");
+  if (c.void_fraction.filters() && c.transfer.method == TransferMethod::Averaged)
+    void_fraction.report(c.void_fraction.diffusion_bandwidth > 0.0 ? "diffusion_bandwidth" : "particle_field_block",
+                         "the filtered fields need a per-particle transfer: 'averaged' shares a "
+                         "cell's drag among the particles in that cell, and a filtered cell holds solids of "
+                         "particles in other cells; use transfer: per_particle_conservative (or per_particle)");
   coupling.reject_unknown_keys();
   ConfigSection output = root.section("output");
   c.output = read_output(output);
@@ -527,6 +546,9 @@ std::string describe(const CouplingConfig &c) {
     << "    floor: " << c.void_fraction.void_fraction_floor << "\n";
   if (c.void_fraction.diffusion_bandwidth > 0.0)
     s << "    diffusion_bandwidth: " << c.void_fraction.diffusion_bandwidth << "\n";
+  if (c.void_fraction.particle_field_block != std::array<int, 3>{1, 1, 1})
+    s << "    particle_field_block: [" << c.void_fraction.particle_field_block[0] << ", "
+      << c.void_fraction.particle_field_block[1] << ", " << c.void_fraction.particle_field_block[2] << "]\n";
   s << "output:\n  statistics_interval: " << c.output.statistics_interval << "\n"
     << "  particles_vtk: " << (c.output.particles_vtk ? "true" : "false") << "\n";
   return s.str();

@@ -20,7 +20,8 @@ cells holding one sphere (eps_g = 0.21) and empty ones (eps_g = 1). Spread, the 
   -1.4 % per mm of b for this 10.2 cm bed; measured -10.4 % and -10.5 %): 8-11 % below Ergun,
   not within 0.5 % of it. Unspread, the same cells give 4.6 Pa against Ergun's 60.8 (-92 %).
 
-A bandwidth wider than the column stops the solver at start with the key, the axis and the fix.
+A bandwidth wider than the column, or a particle-field block that does not divide the mesh,
+stops the solver at start with the key, the axis and the fix.
 
 Cost (the solver's timing line, three alternated pairs, 400 coupling steps, 3000 cells): map and
 forces 0.82 s spread against 0.06 s unspread, 1.9 ms per coupling step against a gas step of
@@ -84,6 +85,14 @@ def main():
     checks.true("a bandwidth wider than the column is refused at start", code != 0 and
                 "coupling.void_fraction.diffusion_bandwidth: 0.5 m is larger than the domain along x (0.0612 m)" in log
                 and "give a bandwidth below 0.0612 m" in log, f"(exit code {code})")
+    # A particle-field block that does not divide the mesh (4 of this copy's 6 cells across) likewise
+    copy.set_coupling("coupling.void_fraction.diffusion_bandwidth", 0.005)
+    copy.set_coupling("coupling.void_fraction.particle_field_block", [4, 1, 1])
+    code, _ = run(["tfdemFoam"], dest, "log.tfdemFoam", expect_success=False)
+    log = open(os.path.join(dest, "log.tfdemFoam")).read()
+    checks.true("a particle-field block that does not divide the mesh is refused at start", code != 0 and
+                "coupling.void_fraction.particle_field_block: 4 gas cells along x is not a whole divisor of the gas "
+                "grid's 6 cells there: give one of 1 2 3 6" in log, f"(exit code {code})")
     checks.finish()
 
 

@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 #include <mpi.h>
 
+#include <array>
 #include <cmath>
+#include <utility>
 #include <random>
 
 #include "tfdem/cell_exchange.h"
@@ -278,18 +280,22 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{VoidFractionMethod::Divided, TransferMethod::PerParticleConservative, GasAtParticle::Cell,
                            drag::Polydispersity::OwnDiameter, true}));
 
-// With a diffusion bandwidth (1.5 cm on the 6 x 8 cm bed), cells split or whole: every rank's
-// cells and particles get what one rank with the whole bed gets; that rank's gas fraction is
-// 1 - the serial map's solid volume spread by DiffusionSmoothing / V_c; the spread keeps the
+// With a particle-field filter (a diffusion bandwidth of 1.5 cm on the 6 x 8 cm bed, the
+// particle field on blocks of 2 x 2 cells, or both), cells split or whole: every rank's cells
+// and particles get what one rank with the whole bed gets; that rank's gas fraction is 1 - the
+// serial map's solid volume filtered by ParticleFieldFilter / V_c; the filter keeps the
 // solids' volume and, conservative, Newton's third law.
-TEST(DistributedCoupling, DiffusionSpreadOnRanksEqualsOneRank) {
+class FilteredCouplingTest : public ::testing::TestWithParam<std::pair<double, std::array<int, 3>>> {};
+
+TEST_P(FilteredCouplingTest, OnRanksEqualsOneRank) {
   const Bed b;
   VoidFractionOptions vf;
   vf.two_dimensional = true;
-  vf.diffusion_bandwidth = 0.015;
+  vf.diffusion_bandwidth = GetParam().first;
+  vf.particle_field_block = GetParam().second;
   const VoidFraction raw = map_void_fraction(compute_weights(b.grid, b.view(), vf), b.view(), b.cell_volume, 0.0);
   std::vector<double> spread_solids = raw.solid_volume, scratch;
-  DiffusionSmoothing(b.grid, vf.diffusion_bandwidth).spread(spread_solids.data(), 1, scratch);
+  ParticleFieldFilter(b.grid, vf.diffusion_bandwidth, vf.particle_field_block).apply(spread_solids.data(), 1, scratch);
   const int n = b.grid.cell_count();
   std::vector<int> all(n);
   for (int g = 0; g < n; ++g) all[g] = g;
@@ -305,7 +311,7 @@ TEST(DistributedCoupling, DiffusionSpreadOnRanksEqualsOneRank) {
         EXPECT_NEAR(one.void_fraction()[g], 1.0 - spread_solids[g] / b.cell_volume[g], 1e-14) << "cell " << g;
         largest_change = std::max(largest_change, std::abs(one.void_fraction()[g] - raw.void_fraction[g]));
       }
-      EXPECT_GT(largest_change, 0.05) << "the spread changed no cell's gas fraction";
+      EXPECT_GT(largest_change, 0.05) << "the filter changed no cell's gas fraction";
 
       const Partition part(b, whole);
       DistributedCoupling coupling(MPI_COMM_WORLD, b.grid, part.owner, part.owned, part.volume, vf, to);
@@ -331,6 +337,11 @@ TEST(DistributedCoupling, DiffusionSpreadOnRanksEqualsOneRank) {
         for (int a = 0; a < 3; ++a) EXPECT_LT(std::abs(t.momentum_imbalance[a]), 1e-12 * t.drag_magnitude_sum);
     }
 }
+
+INSTANTIATE_TEST_SUITE_P(SpreadBlockAndBoth, FilteredCouplingTest,
+                         ::testing::Values(std::make_pair(0.015, std::array<int, 3>{1, 1, 1}),
+                                           std::make_pair(0.0, std::array<int, 3>{2, 2, 1}),
+                                           std::make_pair(0.015, std::array<int, 3>{2, 2, 1})));
 
 // Under the 2-D rule the fluid force has no z component even where the gas data have one
 // (round-off of a 2-D gas solution); in 3-D the z component is kept.

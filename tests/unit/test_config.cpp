@@ -271,10 +271,40 @@ TEST(Config, DiffusionBandwidth) {
   }
   const auto averaged = problems_of(replaced(with("0.01"), "transfer: per_particle", "transfer: averaged"));
   ASSERT_EQ(averaged.size(), 1u);
-  EXPECT_TRUE(contains(averaged, "coupling.void_fraction.diffusion_bandwidth: the spread fields need a per-particle "
+  EXPECT_TRUE(contains(averaged, "coupling.void_fraction.diffusion_bandwidth: the filtered fields need a per-particle "
                                  "transfer"))
       << averaged[0];
   EXPECT_TRUE(contains(averaged, "use transfer: per_particle_conservative")) << averaged[0];
+}
+
+// The particle-field block: three whole numbers >= 1 (whether they divide the mesh is the
+// filter's check); left out, the gas cells; kept by describe(); with a per-particle transfer.
+TEST(Config, ParticleFieldBlock) {
+  const auto with = [](const std::string &value) {
+    return replaced(kValid, "    floor: 0.3", "    floor: 0.3\n    particle_field_block: " + value);
+  };
+  EXPECT_EQ(parse_coupling_config("coupling.yaml", with("[1, 2, 1]")).void_fraction.particle_field_block,
+            (std::array<int, 3>{1, 2, 1}));
+  EXPECT_EQ(parse_coupling_config("coupling.yaml", kValid).void_fraction.particle_field_block,
+            (std::array<int, 3>{1, 1, 1}));
+  EXPECT_FALSE(parse_coupling_config("coupling.yaml", kValid).void_fraction.filters());
+  const std::string described = describe(parse_coupling_config("coupling.yaml", with("[2, 4, 1]")));
+  EXPECT_EQ(parse_coupling_config("described.yaml", described).void_fraction.particle_field_block,
+            (std::array<int, 3>{2, 4, 1}));
+  for (const std::string bad : {"[1, 2]", "[1, 1.5, 1]", "2"}) {
+    const auto p = problems_of(with(bad));
+    ASSERT_EQ(p.size(), 1u) << bad;
+    EXPECT_TRUE(contains(p, "coupling.void_fraction.particle_field_block: must be three whole numbers of 1 or more"))
+        << p[0];
+  }
+  const auto zero = problems_of(with("[0, 1, 1]"));
+  ASSERT_FALSE(zero.empty());
+  EXPECT_TRUE(contains(zero, "coupling.void_fraction.particle_field_block: value 0 is out of range")) << zero[0];
+  const auto averaged = problems_of(replaced(with("[1, 2, 1]"), "transfer: per_particle", "transfer: averaged"));
+  ASSERT_EQ(averaged.size(), 1u);
+  EXPECT_TRUE(contains(averaged, "coupling.void_fraction.particle_field_block: the filtered fields need a "
+                                 "per-particle transfer"))
+      << averaged[0];
 }
 
 // A mixture lists its sizes (sorted); a bad entry is named; Beetstra's polydisperse drag needs a

@@ -18,6 +18,7 @@
 #ifndef TFDEM_VOID_FRACTION_H
 #define TFDEM_VOID_FRACTION_H
 
+#include <array>
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -43,7 +44,13 @@ struct VoidFractionOptions {
   int divided_points_per_diameter = 6;  // sample lattice of the divided method (even: none on a face)
   bool two_dimensional = false;       // seed 000's one-layer rule
   double void_fraction_floor = 0.0;    // eps_g never below this (0 = no floor)
-  double diffusion_bandwidth = 0.0;    // b (m) of diffusion_smoothing.h's spread of the cell sums (0 = none)
+  // particle_field_filter.h's filter of the cell sums: b (m) of the diffusion spread (0 = none),
+  // and the gas cells per particle-field cell along x, y, z (1, 1, 1: the gas cells)
+  double diffusion_bandwidth = 0.0;
+  std::array<int, 3> particle_field_block{1, 1, 1};
+  bool filters() const {
+    return diffusion_bandwidth > 0.0 || particle_field_block != std::array<int, 3>{1, 1, 1};
+  }
 };
 
 // Particle-to-cell weights in compressed rows: particle p's share w of its volume goes to

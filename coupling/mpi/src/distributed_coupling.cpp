@@ -44,7 +44,8 @@ DistributedCoupling::DistributedCoupling(MPI_Comm comm, const CartesianGrid &gri
       transfer_(transfer) {
   if (owned_volume_.size() != owned_cells.size())
     throw std::invalid_argument("DistributedCoupling: one volume per owned cell expected");
-  if (void_fraction_.diffusion_bandwidth > 0.0) smoothing_.emplace(grid_, void_fraction_.diffusion_bandwidth);
+  if (void_fraction_.filters())
+    filter_.emplace(grid_, void_fraction_.diffusion_bandwidth, void_fraction_.particle_field_block);
   scratch_.assign(grid_.cell_count(), -1);
   exchange_coefficient_.assign(owned_volume_.size(), 0.0);
   solid_velocity_.assign(3 * owned_volume_.size(), 0.0);
@@ -60,14 +61,17 @@ void DistributedCoupling::sum_over_ranks(double *values, int count) const {
   MPI_Allreduce(MPI_IN_PLACE, values, count, MPI_DOUBLE, MPI_SUM, comm_);
 }
 
-void DistributedCoupling::spread_owned(std::vector<double> &owned, int components) {
-  if (!smoothing_) return;
+void DistributedCoupling::filter_owned(std::vector<double> &owned, int components, bool adjoint) {
+  if (!filter_) return;
   grid_sums_.assign(static_cast<std::size_t>(components) * grid_.cell_count(), 0.0);
   for (std::size_t c = 0; c < owned_cells_.size(); ++c)
     std::copy_n(&owned[components * c], components, &grid_sums_[components * static_cast<std::size_t>(owned_cells_[c])]);
   if (!exchange_.every_rank_holds_every_cell())  // one owner per cell: the others add zeros
     sum_over_ranks(grid_sums_.data(), static_cast<int>(grid_sums_.size()));
-  smoothing_->spread(grid_sums_.data(), components, smoothing_scratch_);
+  if (adjoint)
+    filter_->apply_adjoint(grid_sums_.data(), components, filter_scratch_);
+  else
+    filter_->apply(grid_sums_.data(), components, filter_scratch_);
   for (std::size_t c = 0; c < owned_cells_.size(); ++c)
     std::copy_n(&grid_sums_[components * static_cast<std::size_t>(owned_cells_[c])], components, &owned[components * c]);
 }
@@ -85,7 +89,7 @@ void DistributedCoupling::map(const ParticleView &particles) {
   exchange_.set_halo(halo_cells_);
   accumulate_solid_sums(weights_, particles, halo_cells_.size(), halo_sums_);
   exchange_.sum_to_owners(halo_sums_, kSolidSumComponents, owned_sums_);
-  spread_owned(owned_sums_, kSolidSumComponents);
+  filter_owned(owned_sums_, kSolidSumComponents);
   map_void_fraction_from_sums(owned_sums_, owned_volume_, void_fraction_.void_fraction_floor, gas_);
 
   totals_.particle_volume = 0.0;
@@ -201,9 +205,9 @@ void DistributedCoupling::forces(const ParticleView &particles, const double *ga
   sauter_diameter_.resize(owned);
   sauter_diameters(owned_sums_, owned, sauter_diameter_.data());
   const double *seen_velocity = gas_velocity;  // the gas velocity the particles' drag takes
-  if (smoothing_) {
+  if (filter_) {
     seen_velocity_.assign(gas_velocity, gas_velocity + 3 * owned);
-    spread_owned(seen_velocity_, 3);
+    filter_owned(seen_velocity_, 3, true);
     seen_velocity = seen_velocity_.data();
   }
   pack_owned_state(seen_velocity, pressure_gradient);
@@ -228,7 +232,7 @@ void DistributedCoupling::forces(const ParticleView &particles, const double *ga
   if (conservative) {
     accumulate_conservative_sums(weights_, particle_exchange_coefficient, result_.particle_drag, halo, halo_sums_);
     exchange_.sum_to_owners(halo_sums_, kConservativeSumComponents, owned_sums_);
-    spread_owned(owned_sums_, kConservativeSumComponents);
+    filter_owned(owned_sums_, kConservativeSumComponents);
     conservative_cell_drag(owned_sums_, owned_gas, exchange_coefficient_.data(), solid_velocity_.data());
   }
   const std::array<double, 3> sink = adds_cell_totals()

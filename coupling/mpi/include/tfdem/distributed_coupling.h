@@ -9,14 +9,15 @@
 //
 // Per step: map() (void fraction on owned cells) then forces() (particle fluid forces,
 // seed 000 eq. 28, and the gas sink K, U_s on owned cells, for the method of the options).
-// With a diffusion bandwidth (void_fraction.h, diffusion_smoothing.h) the completed cell sums
-// are spread before they are used: the solids' sums before the gas fraction, the drag sums of
-// the conservative transfer before the gas sink. The spread needs the whole grid: cells split
-// over ranks are gathered on every rank for it (one sum over ranks of the grid's sums per
-// field), so every rank spreads the same array as one rank does. The gas velocity the
-// particles' drag takes is spread by the same kernel (symmetric: the spread's adjoint), so a
-// particle's drag answers to the gas over b as the gas's drag sink is spread over b, and the
-// power the particles take, sum_i f_i . u_i, is the power the gas gives, sum_c V_c s_c . u_c.
+// With a particle-field filter (void_fraction.h's diffusion bandwidth or particle-field block,
+// particle_field_filter.h) the completed cell sums are filtered before they are used: the
+// solids' sums before the gas fraction, the drag sums of the conservative transfer before the
+// gas sink. The filter needs the whole grid: cells split over ranks are gathered on every
+// rank for it (one sum over ranks of the grid's sums per field), so every rank filters the
+// same array as one rank does. The gas velocity the particles' drag takes goes through the
+// filter's adjoint (for the spread alone the same kernel: it is symmetric), so a particle's
+// drag answers to the gas over b as the gas's drag sink is spread over b, and the power the
+// particles take, sum_i f_i . u_i, is the power the gas gives, sum_c V_c s_c . u_c.
 // Without it the particles sample the gas's cell-scale velocity, which the spread sink cannot
 // damp: the fixed bed on cells of 0.8 d (test coupled.packed_bed_fine_cells) grew columns of
 // 0.49 and 0.65 m/s side by side and took 9 % less drag in its interior. The gas itself keeps
@@ -36,7 +37,7 @@
 #include <vector>
 
 #include "tfdem/cell_exchange.h"
-#include "tfdem/diffusion_smoothing.h"
+#include "tfdem/particle_field_filter.h"
 #include "tfdem/grid.h"
 #include "tfdem/particles.h"
 #include "tfdem/transfer.h"
@@ -91,8 +92,9 @@ class DistributedCoupling {
   bool adds_cell_totals() const;
   // Sum over ranks of `values` in place.
   void sum_over_ranks(double *values, int count) const;
-  // The diffusion spread of `components` values per owned cell (local order), in place.
-  void spread_owned(std::vector<double> &owned, int components);
+  // The particle-field filter (or, `adjoint`, its transpose) of `components` values per owned
+  // cell (local order), in place.
+  void filter_owned(std::vector<double> &owned, int components, bool adjoint = false);
   // One record of kStateComponents per owned cell, for the particle ranks to fetch.
   void pack_owned_state(const double *gas_velocity, const double *pressure_gradient);
   // Split the fetched halo records into the per-field arrays of halo_.
@@ -117,8 +119,8 @@ class DistributedCoupling {
   std::vector<double> owned_volume_;
   VoidFractionOptions void_fraction_;
   TransferOptions transfer_;
-  std::optional<DiffusionSmoothing> smoothing_;  // with a diffusion bandwidth
-  std::vector<double> grid_sums_, smoothing_scratch_, seen_velocity_;
+  std::optional<ParticleFieldFilter> filter_;  // with a diffusion bandwidth or a particle-field block
+  std::vector<double> grid_sums_, filter_scratch_, seen_velocity_;
 
   CellWeights weights_;
   std::vector<int> scratch_, halo_cells_;
