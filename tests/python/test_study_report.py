@@ -76,12 +76,40 @@ def check_refined_runs():
         check("refine_x 1.5 refused", False)
     except StudyError as e:
         check("refine_x 1.5 refused", "run jet_half: refine_x must be a whole number" in str(e) and "1.5" in str(e), str(e))
+    with open(bad, "w") as f:
+        f.write("beds: {jet: {template: jet_bed}}\nruns:\n  jet_step: {bed: jet, gas_step: -1}\n")
+    try:
+        load_study(bad)
+        check("gas_step -1 refused", False)
+    except StudyError as e:
+        check("gas_step -1 refused", "run jet_step: gas_step must be a time step in seconds above 0" in str(e), str(e))
     # fine-coarse pairs: runs that differ in their cells alone
     from replicates import grid_pairs
     runs = {"c": {"bed": "jet"}, "f": {"bed": "jet", "refine_y": 2}, "ff": {"bed": "jet", "refine_x": 2, "refine_y": 4},
             "m2": {"bed": "jet", "coupling": {"coupling.transfer": "per_particle"}}}
     check("grid pairs: coarse-fine, coarse-finest, fine-finest, no other", grid_pairs(runs, list(runs)) ==
           (("c", "f"), ("c", "ff"), ("f", "ff")), str(grid_pairs(runs, list(runs))))
+    # separation: the fine run with its particle field on blocks of the coarse run's cells; its
+    # fine run is the one without the block, its coarse one the run whose cells are the blocks
+    from replicates import BLOCK_KEY, separation_triples
+    cons = {"coupling.transfer": "per_particle_conservative"}
+    runs.update({"f_cf": {"bed": "jet", "refine_y": 2, "coupling": {BLOCK_KEY: [1, 2, 1]}},
+                 "ff_cf": {"bed": "jet", "refine_x": 2, "refine_y": 4, "coupling": {BLOCK_KEY: [2, 4, 1]}},
+                 "ff_f": {"bed": "jet", "refine_x": 2, "refine_y": 4, "coupling": {BLOCK_KEY: [2, 2, 1]}},
+                 "f_cons_cf": {"bed": "jet", "refine_y": 2, "coupling": {**cons, BLOCK_KEY: [1, 2, 1]}}})
+    triples = separation_triples(runs, list(runs))
+    check("separation triples: (coarse, separated, fine) by the block; none without its coarse and fine runs",
+          triples == (("c", "f_cf", "f"), ("c", "ff_cf", "ff"), ("f", "ff_f", "ff")), str(triples))
+    from replicates import step_pairs
+    runs["c_step"] = {"bed": "jet", "gas_step": 2e-4}
+    check("step pairs: the same cells, gas_step alone differs", step_pairs(runs, list(runs)) == (("c", "c_step"),),
+          str(step_pairs(runs, list(runs))))
+    check("a run of its own gas step pairs with the finer grids, not its own",
+          grid_pairs(runs, list(runs)) == (("c", "f"), ("c", "ff"), ("c_step", "f"), ("c_step", "ff"), ("f", "ff")),
+          str(grid_pairs(runs, list(runs))))
+    del runs["c_step"]
+    check("a separated run pairs with no grid", grid_pairs(runs, list(runs)) == (("c", "f"), ("c", "ff"), ("f", "ff")),
+          str(grid_pairs(runs, list(runs))))
 
 
 def check_ensemble():

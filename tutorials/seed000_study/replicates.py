@@ -15,6 +15,7 @@ For every configuration with two or more realizations, over each averaging windo
 - and the plain statements these numbers support, written by rules stated below.
 """
 import math
+import os
 
 import matplotlib.pyplot as plt
 import numpy
@@ -41,17 +42,59 @@ MAP_DEPTH = 0.45  # m: the maps are compared over the cells below this height (t
 REFINEMENTS = ("refine_x", "refine_y")
 
 
+def _cells(spec):
+    return spec.get("refine_x", 1) * spec.get("refine_y", 1)
+
+
+def _rest(spec, keys):
+    return {k: v for k, v in spec.items() if k not in keys}
+
+
 def grid_pairs(runs, configs):
     """(coarser, finer) pairs of the configurations that differ in their cells alone (study.yaml's
-    refine_x, refine_y), e.g. jet_m1 and jet_fine_m1."""
-    def cells(spec):
-        return spec.get("refine_x", 1) * spec.get("refine_y", 1)
-
-    def rest(spec):
-        return {k: v for k, v in spec.items() if k not in REFINEMENTS}
-
+    refine_x, refine_y, and the gas step, which follows the cells unless a run sets its own),
+    e.g. jet_m1 and jet_fine_m1."""
+    keys = REFINEMENTS + ("gas_step",)
     return tuple(sorted((a, b) for a in configs for b in configs
-                        if rest(runs[a]) == rest(runs[b]) and cells(runs[a]) < cells(runs[b])))
+                        if _rest(runs[a], keys) == _rest(runs[b], keys) and _cells(runs[a]) < _cells(runs[b])))
+
+
+def step_pairs(runs, configs):
+    """(template's step, own step) pairs of configurations on the same cells that differ in
+    study.yaml's gas_step alone, e.g. jet_diff24 and jet_diff24_step02."""
+    return tuple(sorted((a, b) for a in configs for b in configs if "gas_step" not in runs[a]
+                        and "gas_step" in runs[b] and _rest(runs[a], ("gas_step",)) == _rest(runs[b], ("gas_step",))))
+
+
+BLOCK_KEY = "coupling.void_fraction.particle_field_block"
+
+
+def separation_triples(runs, configs):
+    """(coarse, separated, fine) for each configuration whose particle field is estimated on
+    blocks of its gas cells (study.yaml's coupling.void_fraction.particle_field_block): fine is
+    the same run without the block, coarse the one whose cells are the blocks (refine_x,
+    refine_y divided by the block's k_x, k_y), e.g. (jet_m2, jet_fine_m2_coarse_field,
+    jet_fine_m2). Only those whose three configurations are all present."""
+    def without_block(spec):
+        coupling = {k: v for k, v in spec.get("coupling", {}).items() if k != BLOCK_KEY}
+        return {**{k: v for k, v in spec.items() if k not in REFINEMENTS + ("coupling",)},
+                **({"coupling": coupling} if coupling else {})}
+
+    def refinement(spec):
+        return spec.get("refine_x", 1), spec.get("refine_y", 1)
+
+    out = []
+    for config in configs:
+        block = runs[config].get("coupling", {}).get(BLOCK_KEY)
+        if not block:
+            continue
+        rest, (rx, ry) = without_block(runs[config]), refinement(runs[config])
+        match = {refinement(runs[c]): c for c in configs if c != config and without_block(runs[c]) == rest
+                 and BLOCK_KEY not in runs[c].get("coupling", {})}
+        coarse, fine = match.get((rx // block[0], ry // block[1])), match.get((rx, ry))
+        if coarse and fine:
+            out.append((coarse, config, fine))
+    return tuple(sorted(out))
 
 
 EARLIER_LATTICE_JET_NC = {"mean": 1.42, "error": 0.01, "window": "5-10",
@@ -191,6 +234,16 @@ class Replicates:
     def grid_pairs(self):
         return grid_pairs(self.report.study["runs"], list(self.groups))
 
+    def separation_triples(self):
+        return separation_triples(self.report.study["runs"], list(self.groups))
+
+    def step_pairs(self):
+        return step_pairs(self.report.study["runs"], list(self.groups))
+
+    def separation_pairs(self):
+        """The map comparisons of the separation test: the separated run against fine and coarse."""
+        return tuple(p for c, s, f in self.separation_triples() for p in ((s, f), (c, s)))
+
     # Maps -----------------------------------------------------------------------------------
     def maps(self, config, w, symmetric):
         """The realizations' time-averaged solids fraction over window w on the coarse cells
@@ -212,7 +265,7 @@ class Replicates:
                 for config in self.groups:
                     maps, rows = self.maps(config, w, symmetric)
                     floors.setdefault(config, {})[w + tag] = l1_noise_floor(maps, rows)
-                for a, b in METHOD_PAIRS + self.grid_pairs():
+                for a, b in METHOD_PAIRS + self.grid_pairs() + self.separation_pairs() + self.step_pairs():
                     if a in self.groups and b in self.groups:
                         (ma, rows), (mb, _) = self.maps(a, w, symmetric), self.maps(b, w, symmetric)
                         cross = cross_l1(ma, mb, rows)
@@ -228,7 +281,11 @@ class Replicates:
         """b - a of the ensemble means for METHOD_PAIRS (method 2 - method 1) and grid_pairs
         (fine - coarse), each with its error and its size in errors."""
         out = {}
-        for kind, pairs in (("method 2 - method 1", METHOD_PAIRS), ("fine - coarse", self.grid_pairs())):
+        separation = self.separation_triples()
+        for kind, pairs in (("method 2 - method 1", METHOD_PAIRS), ("fine - coarse", self.grid_pairs()),
+                            ("coarse field - fine", tuple((f, s) for _, s, f in separation)),
+                            ("coarse field - coarse", tuple((c, s) for c, s, _ in separation)),
+                            ("own gas step - template's", self.step_pairs())):
             for a, b in pairs:
                 if a not in ensembles or b not in ensembles:
                     continue
@@ -303,6 +360,9 @@ class Replicates:
                          f"{verdict} at {RESOLVED:g} standard errors.")
         for pair, values in r["differences"].get("fine - coarse", {}).items():
             lines.append(self._difference_sentence("fine - coarse", pair, values, w0, w1))
+        for pair, values in r["differences"].get("own gas step - template's", {}).items():
+            lines.append(self._difference_sentence("own gas step - template's", pair, values, w0, w1))
+        lines += self._separation_sentences()
         for pair, values in r["maps"]["comparisons"].items():
             v = values[w1]
             s = values[w1 + " symmetric"]
@@ -333,6 +393,33 @@ class Replicates:
                          f"{pm(p['share_of_excess_over_paper']['mean'], p['share_of_excess_over_paper']['error'], 100)} % "
                          f"of its excess over the paper's ~{p['paper']:g}; the poured bed stands "
                          f"{p['poured_minus_paper']:+.2f} above the paper's.")
+        return lines
+
+    def _separation_sentences(self):
+        """Per separation triple (coarse, separated, fine), over the longest window: the grid
+        dependence fine - coarse split into the gas's part (separated - coarse: only the gas's
+        cells differ) and the particle field's (fine - separated: only the particle field's),
+        each metric's and the maps' L1 against their noise floors."""
+        r, w1, lines = self.result, self.windows[-1], []
+        for coarse, separated, fine in self.separation_triples():
+            parts = []
+            for key, part in DIFFERENCE_QUANTITIES:
+                label, unit, scale = next((m[1], m[2], m[3]) for m in METRICS if m[0] == key)
+                e = {c: r["ensembles"][c][w1][key][part] for c in (coarse, separated, fine)}
+                total, gas, field = (difference(e[b], e[a]) for a, b in
+                                     ((coarse, fine), (coarse, separated), (separated, fine)))
+                parts.append(f"{label}{' std' if part == 'std' else ''}: fine - coarse "
+                             f"{signed(total['mean'], total['error'], scale)}, the gas's "
+                             f"{signed(gas['mean'], gas['error'], scale)}, the particle field's "
+                             f"{signed(field['mean'], field['error'], scale)}{' ' + unit if unit else ''}")
+            maps = r["maps"]["comparisons"]
+            l1 = {pair: maps[pair][w1] for pair in (f"{coarse} vs {fine}", f"{coarse} vs {separated}",
+                                                     f"{separated} vs {fine}") if pair in maps}
+            map_text = "; ".join(f"{pair} {v['cross_mean']:.4f} ({v['cross_over_within']:.2f} of the floor, "
+                                 f"p = {v['permutation']['p']:.3f})" for pair, v in l1.items())
+            lines.append(f"Separation test, {separated} (the gas on {fine}'s cells, the particle field on "
+                         f"{coarse}'s), ensemble means over {w1} s: " + "; ".join(parts)
+                         + f". Solids-fraction maps, L1: {map_text}.")
         return lines
 
     def _independence_sentences(self):
@@ -401,6 +488,63 @@ class Replicates:
         fig.suptitle("Blocking curves (root mean square over the realizations); dashed: the realizations' spread "
                      f"of the {w1} s mean; dotted: the study's batch", fontsize=8)
         report.save(fig, "replicates_blocking.png")
+
+    def grid_families(self):
+        """Rows of the grid figure: each chain of configurations that differ in their cells alone
+        (grid_pairs), coarsest first, each separated run after its coarse one."""
+        families = []
+        for a, b in self.grid_pairs():
+            family = next((f for f in families if a in f or b in f), None)
+            if family is None:
+                families.append([a, b])
+            else:
+                family += [c for c in (a, b) if c not in family]
+        cells = {c: len(self.report.records[self.groups[c][0]].x.ravel()) for c in self.groups}
+        out = [sorted(f, key=cells.get) for f in families]
+        for coarse, separated, fine in self.separation_triples():
+            family = next(f for f in out if fine in f)
+            family.insert(family.index(coarse) + 1, separated)
+        return out
+
+    def grid_figure(self, report):
+        """Fig. 4 with the realizations: per grid family (rows) the ensemble-mean time-averaged
+        solids fraction of each configuration on its own cells over the longest window, titled
+        with its L1 against the family's coarsest (on the coarse cells) and the two noise floors."""
+        families = self.grid_families()
+        if not families:
+            return
+        w = self.windows[-1]
+        start, end = map(float, w.split("-"))
+        columns = max(len(f) for f in families)
+        fig, axes = plt.subplots(len(families), columns, figsize=(2.3 * columns + 1, 3.6 * len(families)),
+                                 squeeze=False, constrained_layout=True)
+        comparisons, floors = self.result["maps"]["comparisons"], self.result["maps"]["floors"]
+        for i, family in enumerate(families):
+            for j in range(columns):
+                ax = axes[i, j]
+                if j >= len(family):
+                    ax.axis("off")
+                    continue
+                config = family[j]
+                records = [self.report.records[n] for n in self.groups[config]]
+                mean = numpy.mean([to_grid(r.window_map("solids", start, end), r.shape) for r in records], axis=0)
+                r0 = records[0]
+                height = r0.y.max() + (r0.y[1, 0] - r0.y[0, 0]) / 2 if r0.shape[0] > 1 else MAP_DEPTH
+                image = ax.imshow(mean, origin="lower", extent=(0, r0.width, 0, height), vmin=0, vmax=0.65,
+                                  interpolation="nearest", aspect="equal")
+                ax.set_ylim(0, MAP_DEPTH)
+                title = f"{config}\n{r0.shape[1]} x {r0.shape[0]} cells, n = {len(records)}\nfloor {floors[config][w]['mean']:.3f}"
+                pair = f"{family[0]} vs {config}"
+                if j > 0 and pair in comparisons:
+                    title += f", L1 vs {family[0]} {comparisons[pair][w]['cross_mean']:.3f}"
+                ax.set_title(title, fontsize=6)
+                ax.tick_params(labelsize=6)
+        fig.colorbar(image, ax=axes[:, -1].tolist(), shrink=0.6, label=f"solids fraction, {w} s, ensemble mean")
+        fig.suptitle("Fig. 4 with realizations: the jet bed's time-averaged solids fraction on each grid\n(L1 on the "
+                     "coarse cells, bottom 45 cm; floor: between realizations of one configuration)", fontsize=8)
+        fig.savefig(os.path.join(report.out, "fig4_grids_replicates.png"), dpi=110)
+        plt.close(fig)
+        report.figures.append("fig4_grids_replicates.png")
 
     def markdown(self):
         if not self.groups:

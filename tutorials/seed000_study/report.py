@@ -361,6 +361,7 @@ class Report:
         replicates = Replicates(self, PAPER)
         self.numbers["replicates"] = replicates.numbers()
         replicates.figure(self)
+        replicates.grid_figure(self)
         self.numbers["figures"] = self.figures
         self.numbers["missing_runs"] = self.missing
         with open(os.path.join(self.out, "numbers.json"), "w") as f:

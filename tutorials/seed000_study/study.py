@@ -34,7 +34,7 @@ class StudyError(Exception):
     """A study definition or run problem, named."""
 
 
-RUN_KEYS = ("bed", "coupling", "refine_x", "refine_y", "tfm")
+RUN_KEYS = ("bed", "coupling", "refine_x", "refine_y", "gas_step", "tfm")
 
 
 def load_study(path=os.path.join(STUDY_DIR, "study.yaml")):
@@ -57,8 +57,12 @@ def load_study(path=os.path.join(STUDY_DIR, "study.yaml")):
             if key in spec and not (isinstance(spec[key], int) and spec[key] >= 1):
                 raise StudyError(f"{path}: run {name}: {key} must be a whole number of cells per template cell, "
                                  f"1 or more, got {spec[key]!r}")
-        if spec.get("tfm") and spec.get("refine_x", 1) != 1:
-            raise StudyError(f"{path}: run {name}: refine_x is for the coupled runs; the TFM template refines y only")
+        if "gas_step" in spec and not (isinstance(spec["gas_step"], (int, float)) and spec["gas_step"] > 0):
+            raise StudyError(f"{path}: run {name}: gas_step must be a time step in seconds above 0, "
+                             f"got {spec['gas_step']!r}")
+        if spec.get("tfm") and ("refine_x" in spec or "gas_step" in spec):
+            raise StudyError(f"{path}: run {name}: refine_x and gas_step are for the coupled runs; the TFM template "
+                             "refines y only")
     study["runs"] = with_realizations(study, path)
     return study
 
@@ -130,11 +134,12 @@ class Run(CaseRun):
         for axis, factor in enumerate(self.refinement()):
             if factor != 1:
                 case.scale_cells(axis, factor)
-        if refine != 1:
-            # the same Courant number on the finer cells (the gas step rule, scene_check.h),
-            # rounded down to a whole number of DEM steps that divides the statistics interval
-            case.set_time_steps(gas=whole_gas_step(case.delta_t() / refine, case.dem_time_step(),
-                                                   self.study["statistics_interval"]))
+        if refine != 1 or "gas_step" in self.spec:
+            # the same Courant number on the finer cells (the gas step rule, scene_check.h), or
+            # the run's own gas_step, rounded down to a whole number of DEM steps that divides
+            # the statistics interval
+            target = self.spec.get("gas_step", case.delta_t() / refine)
+            case.set_time_steps(gas=whole_gas_step(target, case.dem_time_step(), self.study["statistics_interval"]))
         for key, value in self.spec.get("coupling", {}).items():
             case.set_coupling(key, value)
         case.set_coupling("output.statistics_interval", self.study["statistics_interval"])
