@@ -403,7 +403,10 @@ void Foam::TfdemCoupling::stopOnEmptyGas(const tfdem::ParticleView& view) const
         << "). Particles with a share in it:\n" << listed.c_str()
         << "A gas fraction <= 0 has no drag law and no gas. Fix: cells several particle"
         << " diameters wide, or a mapping that spreads each particle over the cells it"
-        << " overlaps (coupling.void_fraction.method: divided or porous_cube)."
+        << " overlaps (coupling.void_fraction.method: divided or porous_cube), or, for cells"
+        << " smaller than a particle, the diffusion smoothing (coupling.void_fraction."
+        << "diffusion_bandwidth: 3-4 particle diameters in metres, with transfer:"
+        << " per_particle_conservative)."
         << exit(FatalError);
 }
 
