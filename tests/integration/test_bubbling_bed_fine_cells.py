@@ -15,7 +15,7 @@ Asserted, over 0.1 s (5 mm) and 0.04 s (2.5 mm) from the packed bed at rest:
   1 - pi/2 = -0.5708; the message names the diffusion smoothing as the fix.
 
 Cost (this test, 1 rank, 2026-12-04): 5 mm cells 0.1 s in ~10 s, 2.5 mm cells 0.04 s in ~20 s
-of wall time (10,800 cells; the gas 60 %, map and forces 30 %).
+of wall time (10,800 cells; the gas 60 %, map and forces 24 %, DEM 16 %).
 """
 import os
 import re
