@@ -132,14 +132,15 @@ ParticleFieldFilter::ParticleFieldFilter(const CartesianGrid &grid, double bandw
     const bool spreads = bandwidth > 0.0 && blocks > 1;
     if (!spreads && k == 1) continue;
     std::vector<double> matrix;
-    if (k == 1) {
+    if (!spreads)
+      matrix = block_estimate_kernel(n, k);
+    else if (k == 1)
       matrix = neumann_heat_kernel(n, grid_.spacing[a], pseudo_time());
-    } else {
-      std::vector<double> coarse = block_sums(n, k);
-      if (spreads)
-        coarse = product(neumann_heat_kernel(blocks, k * grid_.spacing[a], pseudo_time()), coarse, blocks, blocks, n);
-      matrix = product(block_interpolation(n, k), coarse, n, blocks, n);
-    }
+    else
+      matrix = product(block_interpolation(n, k),
+                       product(neumann_heat_kernel(blocks, k * grid_.spacing[a], pseudo_time()), block_sums(n, k),
+                               blocks, blocks, n),
+                       n, blocks, n);
     adjoint_[a] = banded(transposed(matrix, n), n);
     forward_[a] = banded(std::move(matrix), n);
   }

@@ -60,6 +60,20 @@ def ar1(phi, n, seed):
     return x
 
 
+def study_refusal(run_line):
+    """load_study's message for a study.yaml of the jet bed and the one run `run_line` ('' when
+    it loads)."""
+    from study import StudyError, load_study
+    path = os.path.join(tempfile.mkdtemp(), "study.yaml")
+    with open(path, "w") as f:
+        f.write(f"beds: {{jet: {{template: jet_bed}}}}\nruns:\n  {run_line}\n")
+    try:
+        load_study(path)
+    except StudyError as e:
+        return str(e)
+    return ""
+
+
 def check_refined_runs():
     # A refined run's gas step: 12.5 DEM steps of 0.02 ms at the target 0.25 ms; the 10 ms
     # interval is 500 steps, whose largest divisor up to 12 is 10: 0.2 ms
@@ -67,22 +81,10 @@ def check_refined_runs():
     check("gas step on 0.5 x 0.5 cm: 0.2 ms", abs(whole_gas_step(2.5e-4, 2e-5, 0.01) - 2e-4) < 1e-15)
     check("gas step on 1 x 1 cm: 0.5 ms (25 steps divide 500)", abs(whole_gas_step(5e-4, 2e-5, 0.01) - 5e-4) < 1e-15)
     # a refinement that is not a whole number of cells is refused, naming the run and the key
-    from study import StudyError, load_study
-    bad = os.path.join(tempfile.mkdtemp(), "study.yaml")
-    with open(bad, "w") as f:
-        f.write("beds: {jet: {template: jet_bed}}\nruns:\n  jet_half: {bed: jet, refine_x: 1.5}\n")
-    try:
-        load_study(bad)
-        check("refine_x 1.5 refused", False)
-    except StudyError as e:
-        check("refine_x 1.5 refused", "run jet_half: refine_x must be a whole number" in str(e) and "1.5" in str(e), str(e))
-    with open(bad, "w") as f:
-        f.write("beds: {jet: {template: jet_bed}}\nruns:\n  jet_step: {bed: jet, gas_step: -1}\n")
-    try:
-        load_study(bad)
-        check("gas_step -1 refused", False)
-    except StudyError as e:
-        check("gas_step -1 refused", "run jet_step: gas_step must be a time step in seconds above 0" in str(e), str(e))
+    half = study_refusal("jet_half: {bed: jet, refine_x: 1.5}")
+    check("refine_x 1.5 refused", "run jet_half: refine_x must be a whole number" in half and "1.5" in half, half)
+    step = study_refusal("jet_step: {bed: jet, gas_step: -1}")
+    check("gas_step -1 refused", "run jet_step: gas_step must be a time step in seconds above 0" in step, step)
     # fine-coarse pairs: runs that differ in their cells alone
     from replicates import grid_pairs
     runs = {"c": {"bed": "jet"}, "f": {"bed": "jet", "refine_y": 2}, "ff": {"bed": "jet", "refine_x": 2, "refine_y": 4},

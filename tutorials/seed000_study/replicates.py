@@ -42,8 +42,13 @@ MAP_DEPTH = 0.45  # m: the maps are compared over the cells below this height (t
 REFINEMENTS = ("refine_x", "refine_y")
 
 
+def _refinement(spec):
+    return spec.get("refine_x", 1), spec.get("refine_y", 1)
+
+
 def _cells(spec):
-    return spec.get("refine_x", 1) * spec.get("refine_y", 1)
+    rx, ry = _refinement(spec)
+    return rx * ry
 
 
 def _rest(spec, keys):
@@ -76,20 +81,16 @@ def separation_triples(runs, configs):
     refine_y divided by the block's k_x, k_y), e.g. (jet_m2, jet_fine_m2_coarse_field,
     jet_fine_m2). Only those whose three configurations are all present."""
     def without_block(spec):
-        coupling = {k: v for k, v in spec.get("coupling", {}).items() if k != BLOCK_KEY}
-        return {**{k: v for k, v in spec.items() if k not in REFINEMENTS + ("coupling",)},
-                **({"coupling": coupling} if coupling else {})}
-
-    def refinement(spec):
-        return spec.get("refine_x", 1), spec.get("refine_y", 1)
+        coupling = _rest(spec.get("coupling", {}), (BLOCK_KEY,))
+        return {**_rest(spec, REFINEMENTS + ("coupling",)), **({"coupling": coupling} if coupling else {})}
 
     out = []
     for config in configs:
         block = runs[config].get("coupling", {}).get(BLOCK_KEY)
         if not block:
             continue
-        rest, (rx, ry) = without_block(runs[config]), refinement(runs[config])
-        match = {refinement(runs[c]): c for c in configs if c != config and without_block(runs[c]) == rest
+        rest, (rx, ry) = without_block(runs[config]), _refinement(runs[config])
+        match = {_refinement(runs[c]): c for c in configs if c != config and without_block(runs[c]) == rest
                  and BLOCK_KEY not in runs[c].get("coupling", {})}
         coarse, fine = match.get((rx // block[0], ry // block[1])), match.get((rx, ry))
         if coarse and fine:

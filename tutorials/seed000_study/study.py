@@ -60,7 +60,7 @@ def load_study(path=os.path.join(STUDY_DIR, "study.yaml")):
         if "gas_step" in spec and not (isinstance(spec["gas_step"], (int, float)) and spec["gas_step"] > 0):
             raise StudyError(f"{path}: run {name}: gas_step must be a time step in seconds above 0, "
                              f"got {spec['gas_step']!r}")
-        if spec.get("tfm") and ("refine_x" in spec or "gas_step" in spec):
+        if spec.get("tfm") and (spec.get("refine_x", 1) != 1 or "gas_step" in spec):
             raise StudyError(f"{path}: run {name}: refine_x and gas_step are for the coupled runs; the TFM template "
                              "refines y only")
     study["runs"] = with_realizations(study, path)
