@@ -85,6 +85,8 @@ def check_refined_runs():
     check("refine_x 1.5 refused", "run jet_half: refine_x must be a whole number" in half and "1.5" in half, half)
     step = study_refusal("jet_step: {bed: jet, gas_step: -1}")
     check("gas_step -1 refused", "run jet_step: gas_step must be a time step in seconds above 0" in step, step)
+    yes = study_refusal("jet_step: {bed: jet, gas_step: yes}")
+    check("gas_step yes (a YAML boolean) refused", "gas_step must be a time step in seconds above 0" in yes, yes)
     # fine-coarse pairs: runs that differ in their cells alone
     from replicates import grid_pairs
     runs = {"c": {"bed": "jet"}, "f": {"bed": "jet", "refine_y": 2}, "ff": {"bed": "jet", "refine_x": 2, "refine_y": 4},

@@ -57,7 +57,8 @@ def load_study(path=os.path.join(STUDY_DIR, "study.yaml")):
             if key in spec and not (isinstance(spec[key], int) and spec[key] >= 1):
                 raise StudyError(f"{path}: run {name}: {key} must be a whole number of cells per template cell, "
                                  f"1 or more, got {spec[key]!r}")
-        if "gas_step" in spec and not (isinstance(spec["gas_step"], (int, float)) and spec["gas_step"] > 0):
+        step = spec.get("gas_step")
+        if "gas_step" in spec and (isinstance(step, bool) or not (isinstance(step, (int, float)) and step > 0)):
             raise StudyError(f"{path}: run {name}: gas_step must be a time step in seconds above 0, "
                              f"got {spec['gas_step']!r}")
         if spec.get("tfm") and (spec.get("refine_x", 1) != 1 or "gas_step" in spec):
