@@ -60,8 +60,9 @@ class FixedBed:
         """p(below) - p(above) (Pa): Ergun over the bed plus the gas weight between the probes."""
         return self.ergun_gradient(u) * self.height + self.rho_g * self.g * self.probe_gap
 
-    def spread_pressure_drop(self, u, bandwidth, step=1e-5):
-        """p(below) - p(above) (Pa) of the bed's particle fields spread by the diffusion smoothing
+    def spread_pressure_drop(self, u, bandwidth, step=1e-5, heights=None):
+        """p(below) - p(above) (Pa) between the probes (or the two `heights`, m) of the bed's
+        particle fields spread by the diffusion smoothing
         of bandwidth b (coupling.void_fraction.diffusion_bandwidth) under the conservative
         per-particle transfer: a 1-D model along the flow, on its own fine line (`step`, m).
 
@@ -94,8 +95,9 @@ class FixedBed:
         drag = numpy.array([phi_bed * beta_over_solid_fraction(e, v, self.d, self.rho_g, self.mu) * v if k else 0.0
                             for e, v, k in zip(eps, seen, inside)])
         gradient = spread(drag) / eps
-        between = (y >= self.probe_heights[0]) & (y <= self.probe_heights[1])
-        return float(gradient[between].sum() * step) + self.rho_g * self.g * self.probe_gap
+        low, high = heights or self.probe_heights
+        between = (y >= low) & (y <= high)
+        return float(gradient[between].sum() * step) + self.rho_g * self.g * (high - low)
 
     def expected_particle_force(self, u):
         """Sum of the particles' fluid forces (N, up): Ergun's pressure drop over the column's
