@@ -204,12 +204,20 @@ def clock(seconds):
     return f"{seconds // 3600}h{seconds % 3600 // 60:02d}m" if seconds >= 3600 else f"{seconds // 60}m{seconds % 60:02d}s"
 
 
+def eta_seconds(wall, t, t_start, end):
+    """Wall time left, at the rate since this batch started the run at t_start (a resumed run's
+    checkpoint, not 0); NaN until 2 % of the span left at the start is done."""
+    span = end - t_start
+    done = (t - t_start) / span if span > 0 else 0.0
+    return wall * (1.0 - done) / done if done > 0.02 else float("nan")
+
+
 def print_progress(active, started):
     for r, _ in active:
         t, end = r.progress()
-        wall = time.monotonic() - started[r.name]
-        done_fraction = t / end if end > 0 else 0.0
-        eta = wall * (1.0 - done_fraction) / done_fraction if done_fraction > 0.02 else float("nan")
+        start_clock, t_start = started[r.name]
+        wall = time.monotonic() - start_clock
+        eta = eta_seconds(wall, t, t_start, end)
         print(f"  {r.name:<26} t = {t:8.3f} / {end:g} s   wall {clock(wall)}   ETA "
               f"{clock(eta) if eta == eta else '?'}", flush=True)
 
@@ -261,9 +269,10 @@ def _run_pending(pending, active, jobs, poll, report_every):
     while pending or active:
         while pending and len(active) < jobs:
             r = pending.pop(0)
-            print(f"{r.name}: {'resuming' if r.resume_point() else 'starting'} {r.solver}", flush=True)
+            resume = r.resume_point()
+            print(f"{r.name}: {'resuming' if resume else 'starting'} {r.solver}", flush=True)
             active.append((r, r.start()))
-            started[r.name] = time.monotonic()
+            started[r.name] = (time.monotonic(), float(resume) if resume else 0.0)
         time.sleep(poll)
         for entry in list(active):
             r, proc = entry

@@ -10,7 +10,7 @@ import tempfile
 
 import numpy
 
-from tfdem.batch import variants_command_line
+from tfdem.batch import eta_seconds, variants_command_line
 from tfdem.bubble import coloured_above, find_bubble
 from tfdem.case import Case, CaseError, DemScript, Grid, set_yaml_value
 from tfdem.engines import ScriptError, hard_sphere_laws, restitution_of_damping
@@ -238,6 +238,12 @@ def main():
         check("a DEM step of 0 is refused", False)
     except CaseError as e:
         check("a DEM step of 0 is refused", "must both be positive" in str(e), str(e))
+
+    # A run resumed at 1 s of 20 s that reached 1.5 s in 60 s of wall: 18.5 s left at 0.5 s per
+    # minute is 37 min (the rate since the start of the whole run, 1.5 s per minute, said 12 min)
+    eta = eta_seconds(60.0, 1.5, 1.0, 20.0)
+    check("ETA of a resumed run at its rate since the resume", abs(eta - 37 * 60.0) < 1e-9, eta)
+    check("no ETA before 2 % of the span is done", eta_seconds(60.0, 1.2, 1.0, 20.0) != eta_seconds(60.0, 1.2, 1.0, 20.0))
 
     # Batch means of a square wave of period 1 s sampled at 0.01 s: batches of 1 s hold one
     # period each, so every batch mean is the wave's mean 0.5 and the error is 0.
