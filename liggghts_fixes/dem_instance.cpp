@@ -228,6 +228,10 @@ std::string DemInstance::script_to_run(const std::string &script, const DemResum
   const dem_script::Script parsed = dem_script::load(script, read_text);
   std::string problems;
   for (const std::string &p : dem_script::coupled_script_problems(script, parsed)) problems += "\n  " + p;
+  int ranks = 1;
+  MPI_Comm_size(comm_, &ranks);
+  const std::string grid = dem_script::processors_problem(parsed, ranks);
+  if (!grid.empty()) problems += "\n  " + grid;
   if (!problems.empty()) throw std::runtime_error("the DEM input script cannot be coupled:" + problems);
   outputs_ = dem_script::output_files(parsed, &unresumable_outputs_);
   if (!resume) on_rank_0([&] { check_data_file(parsed); });

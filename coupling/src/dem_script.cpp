@@ -173,6 +173,38 @@ std::vector<std::string> coupled_script_problems(const std::string &file, const 
   return problems;
 }
 
+namespace {
+std::string rank_count(long n) { return std::to_string(n) + (n == 1 ? " rank" : " ranks"); }
+}  // namespace
+
+std::string processors_problem(const Script &script, int ranks) {
+  const Command *c = script.first("processors");
+  if (!c || c->words.size() < 4) return "";
+  long given = 1;
+  int free_axes = 0;
+  std::string grid;
+  for (int axis = 1; axis <= 3; ++axis) {
+    const std::string &w = c->words[axis];
+    grid += (axis > 1 ? " " : "") + w;
+    if (w == "*") {
+      ++free_axes;
+      continue;
+    }
+    if (w.empty() || w.find_first_not_of("0123456789") != std::string::npos) return "";  // a variable: LIGGGHTS'
+    given *= std::stol(w);
+  }
+  const std::string run = " on a run of " + rank_count(ranks);
+  const std::string why = ": LIGGGHTS splits the particles over every rank of the run. Fix: ";
+  if (free_axes == 0 && given != ranks)
+    return c->where() + "processors " + grid + " asks for " + rank_count(given) + " of the DEM" + run + why +
+           "'processors * 1 1' (the box's x extent split over all ranks) or mpirun -np " + std::to_string(given);
+  if (free_axes > 0 && (given == 0 || ranks % given != 0))
+    return c->where() + "processors " + grid + " fixes " + rank_count(given) + " of the DEM on its given axes" +
+           run + ", which " + std::to_string(given) + " does not divide" + why + "a '*' on every axis the rank count " +
+           "should fill, or a rank count that is a multiple of " + std::to_string(given);
+  return "";
+}
+
 std::vector<OutputFile> output_files(const Script &script, std::vector<std::string> *skipped) {
   std::vector<OutputFile> files;
   const auto add = [&](OutputFile f, const Command &c) {

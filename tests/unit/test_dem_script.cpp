@@ -151,4 +151,28 @@ TEST(DemScript, ResumingNeedsExactlyOneBox) {
                std::invalid_argument);
 }
 
+// processors_problem on hand-made scripts: the counts' product against the rank count.
+TEST(DemScript, ProcessorCountsMustMatchTheRanks) {
+  const auto problem = [](const std::string &grid, int ranks) {
+    return processors_problem(load("in.bed", [&](const std::string &) {
+      return "units si\nprocessors " + grid + "\nread_data bed.data\nfix cpl all tfdem/coupling\n";
+    }), ranks);
+  };
+  EXPECT_EQ(problem("* 1 1", 3), "");
+  EXPECT_EQ(problem("2 2 1", 4), "");
+  EXPECT_EQ(problem("* 2 1", 6), "");
+  EXPECT_EQ(problem("${px} 1 1", 3), "");
+  EXPECT_EQ(problem("2 1 1 grid onelevel", 2), "");
+  const std::string fixed = problem("2 1 1", 3);
+  EXPECT_NE(fixed.find("in.bed:2: processors 2 1 1 asks for 2 ranks of the DEM on a run of 3 ranks"), std::string::npos) << fixed;
+  EXPECT_NE(fixed.find("mpirun -np 2"), std::string::npos) << fixed;
+  EXPECT_NE(fixed.find("'processors * 1 1'"), std::string::npos) << fixed;
+  const std::string partly = problem("* 2 1", 3);
+  EXPECT_NE(partly.find("fixes 2 ranks of the DEM on its given axes on a run of 3 ranks, which 2 does not divide"),
+            std::string::npos) << partly;
+  EXPECT_NE(problem("2 2 1", 1), "");
+  const Script none = load("in.bed", [](const std::string &) { return "units si\n"; });
+  EXPECT_EQ(processors_problem(none, 4), "");
+}
+
 }  // namespace

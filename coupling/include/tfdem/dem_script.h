@@ -55,6 +55,13 @@ Script load(const std::string &file, const ReadFile &read);
 // (drops TFDEM's fix styles), and not exactly one `fix ... tfdem/coupling`.
 std::vector<std::string> coupled_script_problems(const std::string &file, const Script &script);
 
+// The problem of the script's `processors Px Py Pz` command on a run of `ranks` MPI ranks,
+// "file:line: message" with the fix, or "" when it can hold: LIGGGHTS splits the particles over
+// every rank of the run, so the given counts' product must equal `ranks` (or divide it when an
+// axis is '*', which LIGGGHTS then fills). A count given by a variable, or no processors
+// command, is left to LIGGGHTS.
+std::string processors_problem(const Script &script, int ranks);
+
 // A file the script writes as the DEM runs: fix print and fix ave/* files (opened, and
 // truncated unless `append`, when the script runs) and dumps that write one file (opened at
 // their first snapshot). `every`: the dump's interval; for fix ave/*, its Nevery, Nrepeat and
