@@ -264,12 +264,21 @@ void Foam::TfdemCheckpoint::readStart(const wordList& marked)
             << "the checkpoint marker cannot be read: " << e.what() << ". "
             << fallback(start).c_str() << exit(FatalError);
     }
+    // A checkpoint written split over M ranks and resumed split over N != M: reconstructPar
+    // and decomposePar replaced its processor*/ files by fields made from them, which its
+    // hashes do not cover (a serial or whole run reads fields made from them beside them)
+    const bool redecomposed =
+        layout_ == "split" && start_.layout == "split"
+     && start_.ranks != TfdemRanks::count();
     std::string problems;
     if (TfdemRanks::rank() == 0)
     {
         for (const std::string& c : tfdem::changed_files(start_, runTime_.globalPath()))
         {
-            problems += "\n    " + c;
+            if (!redecomposed || c.compare(0, 9, "processor") != 0)
+            {
+                problems += "\n    " + c;
+            }
         }
     }
     stopIfAny
@@ -300,7 +309,7 @@ void Foam::TfdemCheckpoint::readStart(const wordList& marked)
         {
             listed = listed || runTime_.globalPath()/f.path == file;
         }
-        if (!listed && !start_.legacy()) derived = file;
+        if ((!listed || redecomposed) && !start_.legacy()) derived = file;
     }
     const std::string missingAll = TfdemRanks::gatherText(missing);
     if (!missingAll.empty())
@@ -323,7 +332,8 @@ void Foam::TfdemCheckpoint::readStart(const wordList& marked)
     {
         Info<< "TFDEM checkpoint: the gas fields of t = " << start << " s are read from "
             << runTime_.path()/start << ", made from the " << start_.layout.c_str()
-            << " checkpoint's (not covered by its hashes)" << endl;
+            << " checkpoint's on " << start_.ranks << " rank(s) (not covered by its hashes)"
+            << endl;
     }
     DynamicList<word> later;
     for (const word& t : marked)
@@ -348,13 +358,15 @@ void Foam::TfdemCheckpoint::readStart(const wordList& marked)
     resuming_ = true;
     lastGood_ = start;
     tfdemFailure::checkpointWritten(start);
+    label verified = 0;
     for (const auto& f : start_.files)
     {
         lastBytes_ += f.digest.size;
+        verified += !redecomposed || f.path.compare(0, 9, "processor") != 0;
     }
     Info<< "TFDEM checkpoint: resuming gas and particles from t = " << start << " s ("
         << (start_.dem_restart ? (directory(start)/restartName).c_str() : "no particles")
-        << ", " << label(start_.files.size()) << " files verified)" << nl << endl;
+        << ", " << verified << (verified == 1 ? " file" : " files") << " verified)" << nl << endl;
 }
 
 

@@ -2,8 +2,14 @@
 
 #include <mpi.h>
 
+#include <cstdlib>
 #include <cstring>
+#include <iostream>
+#include <string>
 #include <vector>
+
+#include <dirent.h>
+#include <unistd.h>
 
 namespace
 {
@@ -38,12 +44,75 @@ bool Foam::TfdemRanks::gasWhole_ = false;
 bool Foam::TfdemRanks::startedMpi_ = false;
 
 
+namespace
+{
+
+//- processor0, processor1, ... in the case folder (-case, else the working folder)
+int decomposedCount(int argc, char* argv[])
+{
+    std::string root = ".";
+    for (int i = 1; i + 1 < argc; ++i)
+    {
+        if (std::strcmp(argv[i], "-case") == 0) root = argv[i + 1];
+    }
+    DIR* dir = opendir(root.c_str());
+    if (!dir) return 0;
+    int count = 0;
+    while (const dirent* e = readdir(dir))
+    {
+        const std::string name = e->d_name;
+        count += name.size() > 9 && name.compare(0, 9, "processor") == 0
+              && name.find_first_not_of("0123456789", 9) == std::string::npos;
+    }
+    closedir(dir);
+    return count;
+}
+
+//- The launcher's rank count and this rank before MPI starts (Open MPI's, MPICH's), or 0
+int launcherEnv(const char* openMpi, const char* mpich)
+{
+    const char* v = std::getenv(openMpi);
+    if (!v) v = std::getenv(mpich);
+    return v ? std::atoi(v) : 0;
+}
+
+//- With -parallel, OpenFOAM stops on a decomposition for another rank count with "number of
+//  processor directories = 2 is not equal to the number of processors = 3" and no fix; say it
+//  first, with the fixes (a checkpoint resumes on the new count after re-decomposing)
+void checkDecomposition(int argc, char* argv[])
+{
+    const int ranks = launcherEnv("OMPI_COMM_WORLD_SIZE", "PMI_SIZE");
+    const int decomposed = decomposedCount(argc, argv);
+    if (ranks == 0 || decomposed == 0 || decomposed == ranks) return;
+    if (launcherEnv("OMPI_COMM_WORLD_RANK", "PMI_RANK") == 0)
+    {
+        std::cerr
+            << "\n--> TFDEM FATAL ERROR: the gas is decomposed for " << decomposed
+            << " ranks (processor0 ... processor" << decomposed - 1 << ") but this run has "
+            << ranks << " (mpirun -np " << ranks << " tfdemFoam -parallel). Fix: run on "
+            << decomposed << " ranks; or split it for " << ranks << ": reconstructPar"
+            << " -latestTime, numberOfSubdomains " << ranks << " in system/decomposeParDict,"
+            << " decomposePar -force -latestTime (a checkpoint resumes on the new count); or"
+            << " leave out -parallel to solve the gas whole on each rank (after reconstructPar)"
+            << std::endl;
+    }
+    else
+    {
+        ::sleep(2);  // rank 0's message first: mpirun aborts the job at the first rank to exit
+    }
+    std::exit(1);
+}
+
+}  // namespace
+
+
 void Foam::TfdemRanks::start(int argc, char* argv[])
 {
     for (int i = 1; i < argc; ++i)
     {
         if (std::strcmp(argv[i], "-parallel") == 0)
         {
+            checkDecomposition(argc, argv);
             return;
         }
     }

@@ -84,11 +84,31 @@ def write_decompose_dict(case_path, split):
                   f"coeffs          {{ n ({nx} {ny} {nz}); }}\n")
 
 
+def split_times(case_path):
+    """The times a split run wrote (processor0's time folders after 0), oldest first."""
+    folder = os.path.join(case_path, "processor0")
+    names = os.listdir(folder) if os.path.isdir(folder) else []
+    return sorted(float(n) for n in names if _is_number(n) and float(n) > 0)
+
+
+def _is_number(name):
+    try:
+        float(name)
+    except ValueError:
+        return False
+    return True
+
+
 def decompose(case_path, ranks):
     """Decompose the case's mesh and fields for `ranks` ranks, the gas split in x in equal
-    parts (as LIGGGHTS' `processors * 1 1` cuts the particles)."""
+    parts (as LIGGGHTS' `processors * 1 1` cuts the particles). A case a split run has written
+    is first reconstructed at its newest time (reconstructPar -latestTime), then that time is
+    decomposed anew: its checkpoint resumes on the new count (startFrom latestTime)."""
+    resumed = bool(split_times(case_path))
+    if resumed:
+        run(["reconstructPar", "-latestTime"], case_path, "log.reconstructPar")
     write_decompose_dict(case_path, (ranks, 1, 1))
-    run(["decomposePar", "-force"], case_path, "log.decomposePar")
+    run(["decomposePar", "-force"] + (["-latestTime"] if resumed else []), case_path, "log.decomposePar")
 
 
 def prepare_gas(case_path, ranks, gas=DEFAULT_GAS_LAYOUT):

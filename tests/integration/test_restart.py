@@ -9,15 +9,24 @@ Bitwise holds because the checkpoint keeps every value the next step reads (fiel
 digits, the superficial flux, the momentum pressure gradient, the held forces) and the DEM
 sets up again after writing its restart file, as a resumed DEM does. Then: a checkpoint
 without its marker (a run killed while writing it) is refused as a start time.
+
+On another rank count (the packed bed at 0.6 m/s, steady, so round-off does not grow): a
+checkpoint written at 0.2 s by 2 ranks with the gas split resumes to 0.4 s on 3 ranks split
+(re-decomposed by tfdem.run.decompose: reconstructPar, decomposePar -latestTime), on 1 rank
+(reconstructPar) and on 4 ranks with the gas whole; each ends with the straight serial run's
+pressure drop to 1e-8 (the parallel identity test's tolerance). Run on 3 ranks without
+re-decomposing, it stops before OpenFOAM would, naming both counts and the fixes.
 """
 import os
+import shutil
 import signal
 import time
 
 from tfdem import TUTORIALS
 from tfdem.case import Case
-from tfdem.outputs import joined_series
-from tfdem.run import RunError, prepare_gas, run, start
+from tfdem.outputs import joined_series, probes
+from tfdem.fixed_bed import FixedBed
+from tfdem.run import RunError, decompose, prepare_gas, run, start
 from tfdem_testlib import Checks, scratch
 
 END_TIME, WRITE_INTERVAL, KILL_AFTER = 0.2, 0.1, 0.15
@@ -96,6 +105,51 @@ def check_incomplete_checkpoint(checks, case):
                 "the checkpoint at t = 0.2 s is incomplete" in output and "start from the time before" in output)
 
 
+def check_other_counts(checks):
+    source = FixedBed(os.path.join(TUTORIALS, "packed_bed_ergun"))
+
+    def packed(name, end_time):
+        case = source.case.copy_to(scratch(name), extra=source.extra_files())
+        case.set_patch_value("U", "inlet", (0, 0.6, 0))
+        case.set_control(endTime=end_time, writeInterval=0.2)
+        run(["blockMesh"], case.path, "log.blockMesh")
+        return case
+    straight = packed("counts_straight", 0.4)
+    run(["tfdemFoam"], straight.path, "log.tfdemFoam")
+    expected = source.measured_pressure_drop(straight.path)
+    written = packed("counts_written", 0.2)
+    prepare_gas(written.path, 2, "split")
+    run(["tfdemFoam"], written.path, "log.tfdemFoam", 2, gas="split")
+    written.set_control(endTime=0.4, startFrom="latestTime")
+
+    def copy_of_written(name):
+        dest = scratch(name)
+        shutil.rmtree(dest)
+        shutil.copytree(written.path, dest, symlinks=True)
+        return Case(dest)
+    unsplit = copy_of_written("counts_on_3_not_decomposed")
+    code, output = run(["tfdemFoam"], unsplit.path, "log.tfdemFoam", 3, gas="split", expect_success=False)
+    checks.true("split over 2, run split on 3 without decomposing: refused", code != 0, f"(exit code {code})")
+    checks.true("the message names both counts and the re-decomposition",
+                "the gas is decomposed for 2 ranks (processor0 ... processor1) but this run has 3" in output
+                and "decomposePar -force -latestTime" in output, output[-600:])
+    for ranks, gas in ((3, "split"), (1, "serial"), (4, "whole")):
+        label = f"checkpoint of 2 ranks split, resumed on {ranks} rank(s)" + (f", gas {gas}" if ranks > 1 else "")
+        case = copy_of_written(f"counts_on_{ranks}_{gas}")
+        if gas == "split":
+            decompose(case.path, ranks)
+        else:
+            run(["reconstructPar", "-latestTime"], case.path, "log.reconstructPar")
+        _, output = run(["tfdemFoam"], case.path, "log.tfdemFoam", ranks, gas="split" if gas == "split" else "whole")
+        checks.true(f"{label}: resumed from the checkpoint at 0.2 s, its gas fields made from the split ones",
+                    "resuming gas and particles from t = 0.2 s" in output
+                    and "made from the split checkpoint's on 2 rank(s)" in output)
+        last = probes(case.path, source.probes, "p")[-1][0]
+        checks.within(f"{label}: ran on to 0.4 s (last probe row, s)", last, 0.4, 1e-9)
+        checks.close(f"{label}: pressure drop at 0.4 s vs the straight serial run (Pa)",
+                     source.measured_pressure_drop(case.path), expected, 1e-8)
+
+
 def main():
     checks = Checks()
     bed = packed_bed()
@@ -104,6 +158,7 @@ def main():
         check_ranks(checks, bed, 2, "whole")
         check_ranks(checks, bed, 2, "split")
         check_incomplete_checkpoint(checks, resumed)
+        check_other_counts(checks)
     except RunError as e:
         checks.true(str(e), False)
     checks.finish()
