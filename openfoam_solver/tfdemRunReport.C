@@ -4,7 +4,9 @@
 #include <mpi.h>
 
 #include <cmath>
+#include <fstream>
 #include <sstream>
+#include <string>
 
 #include "tfdem/distributed_coupling.h"
 #include "tfdem/scene_check.h"
@@ -154,6 +156,42 @@ void Foam::TfdemRunReport::floorSummary(scalar floor) const
 }
 
 
+namespace
+{
+
+//- This process's peak resident set (VmHWM of /proc/self/status), MB; 0 where there is none
+double peakResidentMegabytes()
+{
+    std::ifstream status("/proc/self/status");
+    std::string key;
+    double kilobytes = 0;
+    while (status >> key)
+    {
+        if (key == "VmHWM:")
+        {
+            status >> kilobytes;
+            break;
+        }
+        status.ignore(1024, '\n');
+    }
+    return kilobytes/1024.0;
+}
+
+}  // namespace
+
+
+void Foam::TfdemRunReport::memory() const
+{
+    const double mine = peakResidentMegabytes();
+    double most = mine, total = mine;
+    MPI_Allreduce(MPI_IN_PLACE, &most, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+    MPI_Allreduce(MPI_IN_PLACE, &total, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+    Info<< "TFDEM memory: peak resident set " << most << " MB on the largest of "
+        << TfdemRanks::count() << " rank(s), " << total << " MB over all (gas, DEM and"
+        << " coupling of each rank's process)" << endl;
+}
+
+
 void Foam::TfdemRunReport::report
 (
     const tfdem::CouplingTotals& last,
@@ -208,4 +246,5 @@ void Foam::TfdemRunReport::report
             << (s[0] > 0 ? (s[0] + s[1] + s[2] + s[3])/s[0] : 0) << " on "
             << TfdemRanks::count() << " rank(s)" << endl;
     }
+    memory();
 }
