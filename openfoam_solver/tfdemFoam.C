@@ -24,11 +24,13 @@ Description
 #include "tfdemCase.H"
 #include "tfdemCoupling.H"
 #include "tfdemFailure.H"
+#include "tfdemStop.H"
 #include "tfdemRanks.H"
 #include "tfdemStartupChecks.H"
 #include "tfdemTime.H"
 
 #include <chrono>
+#include <cstdlib>
 
 int main(int argc, char *argv[])
 {
@@ -53,6 +55,7 @@ int main(int argc, char *argv[])
     #include "addCheckCaseOptions.H"
     #include "setRootCaseLists.H"
     tfdemFailure::install();
+    tfdemStop::install();
     TfdemCase::checkControlDict(args);
     const fileName forceRecordFile
     (
@@ -84,6 +87,12 @@ int main(int argc, char *argv[])
         #include "readTimeControls.H"
         #include "CourantNo.H"
         #include "setDeltaT.H"
+
+        // Asked to stop: this step is written (the joint checkpoint) and is the last
+        if (tfdemStop::agreed())
+        {
+            runTime.stopAt(Time::stopAtControls::saWriteNow);
+        }
 
         ++runTime;
 
@@ -152,6 +161,15 @@ int main(int argc, char *argv[])
         coupling->report();
     }
     coupling.clear();
+
+    if (tfdemStop::signal())
+    {
+        Info<< "TFDEM stop: " << tfdemStop::signalName() << " received; stopped at t = "
+            << runTime.timeName() << " s, its fields and checkpoint written. Resume with"
+            << " startFrom latestTime" << endl;
+        TfdemRanks::finish();
+        std::exit(tfdemStop::exitCode);  // not return: ~argList would exit 0 under mpirun
+    }
 
     Info<< "End\n" << endl;
 

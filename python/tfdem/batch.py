@@ -18,6 +18,7 @@ from tfdem.case import Case
 from tfdem.run import environment
 
 STATUS = "study.status.json"
+STOPPED_AT_CHECKPOINT = 75  # tfdemFoam's exit status when a signal stopped it at a checkpoint (tfdemStop.H)
 
 
 class BatchError(Exception):
@@ -151,6 +152,11 @@ class CaseRun:
         log = self.logs()[-1]
         text = open(log, errors="replace").read()
         ok = code == 0 and re.search(r"(?m)^End\s*$", text)
+        if code == STOPPED_AT_CHECKPOINT:
+            self.set_status(state="stopped", exit_code=code, wall_seconds=self.wall_seconds())
+            print(f"\n{self.name}: {self.solver} was stopped by a signal at a checkpoint; run again to resume",
+                  file=sys.stderr, flush=True)
+            return False
         self.set_status(state="done" if ok else "failed", exit_code=code, wall_seconds=self.wall_seconds())
         if not ok:
             tail = "\n".join(text.splitlines()[-25:])

@@ -16,8 +16,13 @@ checkpoint written at 0.2 s by 2 ranks with the gas split resumes to 0.4 s on 3 
 (reconstructPar) and on 4 ranks with the gas whole; each ends with the straight serial run's
 pressure drop to 1e-8 (the parallel identity test's tolerance). Run on 3 ranks without
 re-decomposing, it stops before OpenFOAM would, naming both counts and the fixes.
+
+Asked to stop (SIGUSR1 to mpirun of 2 ranks, the gas whole; SIGTERM to one solver) once
+past 0.1 s: the run writes a joint checkpoint at the step its ranks agree on and exits 75;
+resumed, it ends at the straight serial run's pressure drop to 1e-8.
 """
 import os
+import re
 import shutil
 import signal
 import time
@@ -105,15 +110,20 @@ def check_incomplete_checkpoint(checks, case):
                 "the checkpoint at t = 0.2 s is incomplete" in output and "start from the time before" in output)
 
 
-def check_other_counts(checks):
-    source = FixedBed(os.path.join(TUTORIALS, "packed_bed_ergun"))
+PACKED_BED = FixedBed(os.path.join(TUTORIALS, "packed_bed_ergun"))
 
-    def packed(name, end_time):
-        case = source.case.copy_to(scratch(name), extra=source.extra_files())
-        case.set_patch_value("U", "inlet", (0, 0.6, 0))
-        case.set_control(endTime=end_time, writeInterval=0.2)
-        run(["blockMesh"], case.path, "log.blockMesh")
-        return case
+
+def packed(name, end_time):
+    """The packed bed at 0.6 m/s, meshed, to end_time, writing every 0.2 s."""
+    case = PACKED_BED.case.copy_to(scratch(name), extra=PACKED_BED.extra_files())
+    case.set_patch_value("U", "inlet", (0, 0.6, 0))
+    case.set_control(endTime=end_time, writeInterval=0.2)
+    run(["blockMesh"], case.path, "log.blockMesh")
+    return case
+
+
+def check_other_counts(checks):
+    source = PACKED_BED
     straight = packed("counts_straight", 0.4)
     run(["tfdemFoam"], straight.path, "log.tfdemFoam")
     expected = source.measured_pressure_drop(straight.path)
@@ -148,6 +158,33 @@ def check_other_counts(checks):
         checks.within(f"{label}: ran on to 0.4 s (last probe row, s)", last, 0.4, 1e-9)
         checks.close(f"{label}: pressure drop at 0.4 s vs the straight serial run (Pa)",
                      source.measured_pressure_drop(case.path), expected, 1e-8)
+    return expected
+
+
+def check_stop_by_signal(checks, expected, ranks, sig):
+    """A run sent `sig` (to mpirun, which forwards it, or to the one solver) stops at a joint
+    checkpoint with exit status 75; resumed, it ends as the straight serial run."""
+    label = f"{signal.Signals(sig).name} to {'mpirun of ' + str(ranks) + ' ranks' if ranks > 1 else 'the solver'}"
+    case = packed(f"stopped_{ranks}_{sig}", 0.4)
+    proc = start(["tfdemFoam"], case.path, "log.stopped", ranks, "whole")
+    log = case.file("log.stopped")
+    while proc.poll() is None and "\nTime = 0.1\n" not in open(log, errors="replace").read():
+        time.sleep(0.1)
+    proc.send_signal(sig)
+    code = proc.wait()
+    text = open(log, errors="replace").read()
+    stopped = re.search(r"TFDEM stop: \S+ received; stopped at t = (\S+) s", text)
+    checks.true(f"{label}: exit status 75, the stop said", code == 75 and stopped is not None, f"(exit {code})")
+    if not stopped:
+        return
+    t = stopped.group(1)
+    checks.true(f"{label}: a joint checkpoint at the stop, t = {t} s < 0.4 s",
+                float(t) < 0.4 and os.path.isfile(case.file(t, "tfdem.checkpoint")))
+    case.set_control(startFrom="latestTime")
+    _, output = run(["tfdemFoam"], case.path, "log.tfdemFoam", ranks, gas="whole")
+    checks.true(f"{label}: resumed from it", f"resuming gas and particles from t = {t} s" in output)
+    checks.close(f"{label}: resumed to 0.4 s, pressure drop vs the straight serial run (Pa)",
+                 PACKED_BED.measured_pressure_drop(case.path), expected, 1e-8)
 
 
 def main():
@@ -158,7 +195,9 @@ def main():
         check_ranks(checks, bed, 2, "whole")
         check_ranks(checks, bed, 2, "split")
         check_incomplete_checkpoint(checks, resumed)
-        check_other_counts(checks)
+        expected = check_other_counts(checks)
+        check_stop_by_signal(checks, expected, 2, signal.SIGUSR1)
+        check_stop_by_signal(checks, expected, 1, signal.SIGTERM)
     except RunError as e:
         checks.true(str(e), False)
     checks.finish()

@@ -1,0 +1,58 @@
+#include "tfdemStop.H"
+
+#include <mpi.h>
+
+#include <csignal>
+#include <cstring>
+
+namespace
+{
+
+volatile std::sig_atomic_t received = 0;
+int agreedSignal = 0;
+
+void handler(int signal)
+{
+    if (received == 0) received = signal;
+}
+
+} // End anonymous namespace
+
+
+void Foam::tfdemStop::install()
+{
+    for (const int signal : {SIGTERM, SIGUSR1})
+    {
+        struct sigaction action;
+        std::memset(&action, 0, sizeof action);
+        action.sa_handler = handler;
+        sigemptyset(&action.sa_mask);
+        ::sigaction(signal, &action, nullptr);
+    }
+}
+
+
+bool Foam::tfdemStop::agreed()
+{
+    int flag = received;
+    int started = 0;
+    MPI_Initialized(&started);
+    if (started)
+    {
+        MPI_Allreduce(MPI_IN_PLACE, &flag, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+    }
+    if (flag != 0 && agreedSignal == 0) agreedSignal = flag;
+    return agreedSignal != 0;
+}
+
+
+int Foam::tfdemStop::signal()
+{
+    return agreedSignal;
+}
+
+
+const char* Foam::tfdemStop::signalName()
+{
+    return agreedSignal == SIGTERM ? "SIGTERM" : agreedSignal == SIGUSR1 ? "SIGUSR1" : "a signal";
+}
