@@ -73,6 +73,7 @@ int main(int argc, char *argv[])
         TfdemCase::coupled(runTime) ? new TfdemCheckpoint(runTime) : nullptr
     );
     #include "createMesh.H"
+    TfdemRanks::adviseLayout(returnReduce(mesh.nCells(), sumOp<label>()));
     #include "createControl.H"
     #include "createTimeControls.H"
     #include "createFields.H"

@@ -1,5 +1,7 @@
 #include "tfdemRanks.H"
 
+#include "tfdem/gas_layout.h"
+
 #include <mpi.h>
 
 #include <cstdlib>
@@ -165,6 +167,19 @@ void Foam::TfdemRanks::checkTime(Time& runTime)
     }
     Info<< "TFDEM ranks: the gas whole on each of " << count() << " ranks (rank 0 writes),"
         << " the particles split by LIGGGHTS" << nl << endl;
+}
+
+
+void Foam::TfdemRanks::adviseLayout(label cells)
+{
+    if (count() < 2)
+    {
+        return;
+    }
+    const tfdem::gas_layout::Layout running =
+        gasWhole_ ? tfdem::gas_layout::Layout::whole : tfdem::gas_layout::Layout::split;
+    Info<< "TFDEM parallel: "
+        << tfdem::gas_layout::advice(double(cells), count(), running).c_str() << nl << endl;
 }
 
 
