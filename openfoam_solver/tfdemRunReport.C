@@ -182,13 +182,15 @@ double peakResidentMegabytes()
 
 void Foam::TfdemRunReport::memory() const
 {
-    const double mine = peakResidentMegabytes();
-    double most = mine, total = mine;
-    MPI_Allreduce(MPI_IN_PLACE, &most, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+    struct { double megabytes; int rank; } mine{peakResidentMegabytes(), TfdemRanks::rank()}, most, least;
+    double total = mine.megabytes;
+    MPI_Allreduce(&mine, &most, 1, MPI_DOUBLE_INT, MPI_MAXLOC, MPI_COMM_WORLD);
+    MPI_Allreduce(&mine, &least, 1, MPI_DOUBLE_INT, MPI_MINLOC, MPI_COMM_WORLD);
     MPI_Allreduce(MPI_IN_PLACE, &total, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
-    Info<< "TFDEM memory: peak resident set " << most << " MB on the largest of "
-        << TfdemRanks::count() << " rank(s), " << total << " MB over all (gas, DEM and"
-        << " coupling of each rank's process)" << endl;
+    Info<< "TFDEM memory: peak resident set " << most.megabytes << " MB on the largest of "
+        << TfdemRanks::count() << " rank(s) (rank " << most.rank << "), " << least.megabytes
+        << " MB on the smallest (rank " << least.rank << "), " << total << " MB over all (gas,"
+        << " DEM and coupling of each rank's process)" << endl;
 }
 
 
