@@ -111,6 +111,21 @@ def decompose(case_path, ranks):
     run(["decomposePar", "-force"] + (["-latestTime"] if resumed else []), case_path, "log.decomposePar")
 
 
+def reconstruct(case_path):
+    """A case whose newest time a split run wrote (its gas fields in processor*/ alone; the
+    checkpoint's DEM restart and marker are at the top) made whole for a whole or serial run
+    (reconstructPar -latestTime); True when it did."""
+    folder = os.path.join(case_path, "processor0")
+    names = [n for n in os.listdir(folder) if _is_number(n) and float(n) > 0] if os.path.isdir(folder) else []
+    if not names:
+        return False
+    newest = max(names, key=float)
+    if os.path.isfile(os.path.join(case_path, newest, "p")):
+        return False
+    run(["reconstructPar", "-latestTime"], case_path, "log.reconstructPar")
+    return True
+
+
 def prepare_gas(case_path, ranks, gas=DEFAULT_GAS_LAYOUT):
     """What the gas layout needs before the run: the decomposition when split on > 1 rank."""
     if ranks > 1 and check_gas_layout(gas) == "split":
@@ -119,16 +134,22 @@ def prepare_gas(case_path, ranks, gas=DEFAULT_GAS_LAYOUT):
 
 def main(argv=None):
     """python3 -m tfdem.run decompose CASE RANKS: split a case's gas over RANKS ranks, for
-    `mpirun -np RANKS tfdemFoam -parallel` (the whole layout needs no decomposition)."""
+    `mpirun -np RANKS tfdemFoam -parallel` (a split checkpoint re-decomposed for the new count);
+    python3 -m tfdem.run reconstruct CASE: a split checkpoint made whole, for a whole or
+    serial run."""
     import sys
     args = sys.argv[1:] if argv is None else argv
-    if len(args) != 3 or args[0] != "decompose" or not args[2].isdigit() or int(args[2]) < 2:
-        sys.exit("usage: python3 -m tfdem.run decompose CASE RANKS(>= 2)")
+    usage = "usage: python3 -m tfdem.run decompose CASE RANKS(>= 2) | reconstruct CASE"
     try:
-        decompose(args[1], int(args[2]))
+        if len(args) == 3 and args[0] == "decompose" and args[2].isdigit() and int(args[2]) >= 2:
+            decompose(args[1], int(args[2]))
+            print(f"gas split on {args[2]} ranks")
+        elif len(args) == 2 and args[0] == "reconstruct":
+            print("newest time reconstructed" if reconstruct(args[1]) else "nothing to reconstruct")
+        else:
+            sys.exit(usage)
     except RunError as e:
         sys.exit(f"tfdem.run: {e}")
-    print(f"gas split on {args[2]} ranks")
     return 0
 
 
