@@ -432,6 +432,8 @@ long long DemInstance::step() const { return static_cast<long long>(lmp_->update
 
 std::size_t DemInstance::local_count() const { return static_cast<std::size_t>(lmp_->atom->nlocal); }
 
+std::size_t DemInstance::ghost_count() const { return static_cast<std::size_t>(lmp_->atom->nghost); }
+
 const double *DemInstance::positions() const { return local_count() ? lmp_->atom->x[0] : nullptr; }
 
 const double *DemInstance::velocities() const { return local_count() ? lmp_->atom->v[0] : nullptr; }

@@ -84,6 +84,7 @@ class DemInstance : public ParticleEngine {
   double time() const override { return step() * time_step(); }
   // Particles on this rank and their per-atom arrays (x, v: 3 per atom; radius, mass: 1).
   std::size_t local_count() const override;
+  std::size_t ghost_count() const override;
   const double *positions() const override;
   const double *velocities() const override;
   const double *radii() const override;

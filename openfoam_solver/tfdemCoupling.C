@@ -347,6 +347,11 @@ void Foam::TfdemCoupling::computeForces(const tfdem::ParticleView& view)
             << "at t = " << mesh_.time().value() << " s: " << e.what() << exit(FatalError);
     }
     report_.couplingStep(core_->totals(), core_->exchange().remote_records());
+    report_.communication
+    (
+        core_->exchange().bytes_sent(), core_->exchange().messages_sent(),
+        dem_->ghost_count(), dem_->local_count()
+    );
     const std::vector<double>& drag = core_->particle_drag();
     double sums[4] = {0, 0, 0, 0};
     for (std::size_t i = 0; i < view.count; ++i)

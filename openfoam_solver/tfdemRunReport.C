@@ -18,6 +18,45 @@ Foam::TfdemRunReport::TfdemRunReport(const Time& runTime)
 {}
 
 
+void Foam::TfdemRunReport::communication
+(
+    double bytesSent,
+    double messagesSent,
+    std::size_t ghosts,
+    std::size_t owned
+)
+{
+    bytesSent_ = bytesSent;
+    messagesSent_ = messagesSent;
+    ghostSum_ += double(ghosts);
+    ownedSum_ += double(owned);
+    ghostMost_ = std::max(ghostMost_, double(ghosts));
+    ++communicationSteps_;
+}
+
+
+void Foam::TfdemRunReport::communicationSummary() const
+{
+    if (TfdemRanks::count() < 2 || communicationSteps_ == 0)
+    {
+        return;
+    }
+    const double steps = communicationSteps_;
+    double most[4] = {bytesSent_/steps, messagesSent_/steps, ghostSum_/steps, ghostMost_};
+    double all[3] = {bytesSent_/steps, ghostSum_/steps, ownedSum_/steps};
+    MPI_Allreduce(MPI_IN_PLACE, most, 4, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+    MPI_Allreduce(MPI_IN_PLACE, all, 3, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+    const double ranks = TfdemRanks::count();
+    Info<< "TFDEM communication: per coupling step the cell exchange sent " << most[0]
+        << " bytes in " << most[1] << " messages from the busiest rank (" << all[0]
+        << " bytes from all " << TfdemRanks::count() << "); LIGGGHTS' ghost particles "
+        << all[1]/ranks << " per rank on average (" << all[1]/max(all[2], 1.0)
+        << " of the particles), " << most[3] << " on the fullest rank at most: its neighbour"
+        << " exchange sends each ghost's position, velocity and spin (9 doubles, 72 bytes)"
+        << " every DEM step" << endl;
+}
+
+
 void Foam::TfdemRunReport::couplingStep
 (
     const tfdem::CouplingTotals& totals,
@@ -248,5 +287,6 @@ void Foam::TfdemRunReport::report
             << (s[0] > 0 ? (s[0] + s[1] + s[2] + s[3])/s[0] : 0) << " on "
             << TfdemRanks::count() << " rank(s)" << endl;
     }
+    communicationSummary();
     memory();
 }

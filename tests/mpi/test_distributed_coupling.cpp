@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <mpi.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <utility>
@@ -65,6 +66,28 @@ TEST(CellExchange, SumsAtOwnersAndFetchesBack) {
   exchange.fetch_from_owners(owned_values, 1, fetched);
   ASSERT_EQ(fetched.size(), halo.size());
   for (std::size_t h = 0; h < halo.size(); ++h) EXPECT_EQ(fetched[h], 0.5 * halo[h]);
+
+  // What went to other ranks, counted from the halos: set_halo sends each halo cell another
+  // rank owns as an int, sum_to_owners its 2 values; fetch_from_owners sends back 1 value for
+  // each of my cells in another rank's halo. One message per destination and exchange.
+  double sent_to_owners = 0, sent_back = 0;
+  std::vector<bool> owners_written(ranks(), false), askers(ranks(), false);
+  for (int g : halo)
+    if (owner[g] != rank()) {
+      ++sent_to_owners;
+      owners_written[owner[g]] = true;
+    }
+  for (int r = 0; r < ranks(); ++r)
+    for (int g = cells - 1 - r; r != rank() && g >= 0; g -= 3)
+      if (owner[g] == rank()) {
+        ++sent_back;
+        askers[r] = true;
+      }
+  const double destinations = std::count(owners_written.begin(), owners_written.end(), true);
+  const double sources = std::count(askers.begin(), askers.end(), true);
+  EXPECT_EQ(exchange.bytes_sent(), sent_to_owners * (4 + 2 * 8) + sent_back * 8);
+  EXPECT_EQ(exchange.messages_sent(), 2 * destinations + sources);
+  if (ranks() > 1) EXPECT_GT(exchange.bytes_sent(), 0.0);
 }
 
 // Every rank holds every cell (in reversed local order): each rank gets the sum over all
@@ -103,6 +126,10 @@ TEST(CellExchange, EveryRankHoldsTheSumsOfEveryCell) {
   exchange.fetch_from_owners(owned_values, 1, fetched);
   ASSERT_EQ(fetched.size(), halo.size());
   for (std::size_t h = 0; h < halo.size(); ++h) EXPECT_EQ(fetched[h], 0.5 * halo[h] + rank());
+  // One sum of every cell's 2 values: each rank's share of the reduction (rank 0: the
+  // broadcast), 50 x 2 doubles = 800 bytes in one message; fetching is local. One rank: none.
+  EXPECT_EQ(exchange.bytes_sent(), ranks() > 1 ? 800.0 : 0.0);
+  EXPECT_EQ(exchange.messages_sent(), ranks() > 1 ? 1.0 : 0.0);
 }
 
 TEST(CellExchange, RefusesAMixedOrIncompleteOwnerTable) {

@@ -44,6 +44,9 @@ class ParticleEngine {
   // Particles on this rank (x, v: 3 per particle; radius, mass: 1) and over all ranks
   virtual std::size_t local_count() const = 0;
   virtual long global_count() const = 0;
+  // Copies of other ranks' particles this rank holds for its contacts (LIGGGHTS' ghosts; 0
+  // for an engine on one rank): what its neighbour exchange sends each DEM step
+  virtual std::size_t ghost_count() const { return 0; }
   virtual const double *positions() const = 0;
   virtual const double *velocities() const = 0;
   virtual const double *radii() const = 0;

@@ -89,9 +89,18 @@ void CellExchange::set_halo(const std::vector<int> &halo_cells) {
   std::vector<int> receive_cells(received);
   MPI_Alltoallv(send_cells.data(), send_scaled.data(), send_offsets.data(), MPI_INT, receive_cells.data(),
                 receive_scaled.data(), receive_offsets.data(), MPI_INT, comm_);
+  count_sent(send_scaled, sizeof(int));
   received_local_.resize(received);
   for (int k = 0; k < received; ++k) received_local_[k] = local_of_cell_[receive_cells[k]];
   remote_records_ = static_cast<std::size_t>(received - receive_counts_[rank_]);
+}
+
+void CellExchange::count_sent(const std::vector<int> &scaled, std::size_t value_bytes) {
+  for (int r = 0; r < size_; ++r)
+    if (r != rank_ && scaled[r] > 0) {
+      bytes_sent_ += double(scaled[r]) * double(value_bytes);
+      ++messages_sent_;
+    }
 }
 
 void CellExchange::exchange(const std::vector<double> &send, const std::vector<int> &send_records,
@@ -102,6 +111,7 @@ void CellExchange::exchange(const std::vector<double> &send, const std::vector<i
   receive.resize(std::accumulate(receive_scaled.begin(), receive_scaled.end(), std::size_t{0}));
   MPI_Alltoallv(send.data(), send_scaled.data(), send_offsets.data(), MPI_DOUBLE, receive.data(),
                 receive_scaled.data(), receive_offsets.data(), MPI_DOUBLE, comm_);
+  count_sent(send_scaled, sizeof(double));
 }
 
 void CellExchange::sum_to_owners(const std::vector<double> &halo_values, int components,
@@ -153,6 +163,10 @@ void CellExchange::sum_on_every_rank(const std::vector<double> &halo_values, int
   receive_buffer_.resize(values);
   MPI_Reduce(send_buffer_.data(), receive_buffer_.data(), static_cast<int>(values), MPI_DOUBLE, MPI_SUM, 0, comm_);
   MPI_Bcast(receive_buffer_.data(), static_cast<int>(values), MPI_DOUBLE, 0, comm_);
+  if (size_ > 1) {
+    bytes_sent_ += double(values) * sizeof(double);
+    ++messages_sent_;
+  }
   owned_values.resize(values);
   for (std::size_t g = 0; g < owner_of_cell_.size(); ++g)
     for (int a = 0; a < components; ++a)

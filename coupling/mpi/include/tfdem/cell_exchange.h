@@ -48,6 +48,12 @@ class CellExchange {
   // when every rank holds every cell).
   std::size_t remote_records() const { return remote_records_; }
   bool every_rank_holds_every_cell() const { return replicated_; }
+  // What this rank has sent other ranks since construction: payload bytes (cell values and
+  // halo cell indices; with every cell on every rank, its share of the reduction to rank 0,
+  // or rank 0's broadcast) and messages (one per destination rank and exchange; a reduction
+  // or broadcast counts one)
+  double bytes_sent() const { return bytes_sent_; }
+  double messages_sent() const { return messages_sent_; }
 
  private:
   // Owner table all kEveryRank (true), or ranks only (false); anything else throws.
@@ -72,6 +78,9 @@ class CellExchange {
   std::vector<double> send_buffer_, receive_buffer_;
   bool replicated_ = false;
   std::vector<int> halo_cells_;  // when replicated: the halo's global cells
+  double bytes_sent_ = 0, messages_sent_ = 0;
+  // Count what `scaled` (values per destination rank) sends to other ranks
+  void count_sent(const std::vector<int> &scaled, std::size_t value_bytes);
 };
 
 }  // namespace tfdem
