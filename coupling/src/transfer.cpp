@@ -40,7 +40,7 @@ double particle_beta_per_solid_fraction(const TransferOptions &o, double eps, do
 std::vector<double> per_particle_drag(const CellWeights &w, const ParticleView &p, const CellSolidsState &cells,
                                       const GasAtParticles &g, const TransferOptions &o, TransferResult &r) {
   const bool polydisperse = o.polydispersity != drag::Polydispersity::OwnDiameter;
-  if (polydisperse && !cells.sauter_diameter)
+  if (polydisperse && p.count > 0 && !cells.sauter_diameter)
     throw std::invalid_argument("transfer: polydisperse drag needs the cells' Sauter diameters");
   const std::vector<double> sauter = polydisperse ? average_to_particles(w, cells.sauter_diameter, 1) : std::vector<double>();
   std::vector<double> exchange_coefficient(p.count);
