@@ -99,11 +99,26 @@ def _is_number(name):
     return True
 
 
+def mesh_cells(case_path):
+    """The mesh's cell count from its polyMesh/owner header (blockMesh writes it), or None."""
+    try:
+        with open(os.path.join(case_path, "constant", "polyMesh", "owner"), errors="replace") as f:
+            found = re.search(r"nCells:\s*(\d+)", f.read(4096))
+    except OSError:
+        return None
+    return int(found.group(1)) if found else None
+
+
 def decompose(case_path, ranks):
     """Decompose the case's mesh and fields for `ranks` ranks, the gas split in x in equal
     parts (as LIGGGHTS' `processors * 1 1` cuts the particles). A case a split run has written
     is first reconstructed at its newest time (reconstructPar -latestTime), then that time is
     decomposed anew: its checkpoint resumes on the new count (startFrom latestTime)."""
+    cells = mesh_cells(case_path)
+    if cells is not None and ranks > cells:
+        raise RunError(f"{case_path}: {ranks} ranks for a mesh of {cells} cells: a rank would own no gas cell. "
+                       f"Fix: at most {cells} ranks split, or the gas whole on each rank (no decomposition, "
+                       "mpirun without -parallel)")
     resumed = bool(split_times(case_path))
     if resumed:
         run(["reconstructPar", "-latestTime"], case_path, "log.reconstructPar")

@@ -17,7 +17,7 @@ from tfdem.engines import ScriptError, hard_sphere_laws, restitution_of_damping
 from tfdem.outputs import OutputError, dump_frames, fix_print, joined_series
 from tfdem.packing import at_rest, largest_overlap, packing_settings, script_stiffness, set_atom_types, to_mid_plane
 from tfdem.physics import slab_solid_fraction
-from tfdem.run import command
+from tfdem.run import RunError, command, decompose, mesh_cells
 from tfdem.stats import batch_means
 
 failures = []
@@ -238,6 +238,20 @@ def main():
         check("a DEM step of 0 is refused", False)
     except CaseError as e:
         check("a DEM step of 0 is refused", "must both be positive" in str(e), str(e))
+
+    # More ranks than gas cells are refused before decomposePar runs: a mesh whose owner file
+    # says 120 cells, split over 121 ranks
+    with tempfile.TemporaryDirectory() as where:
+        os.makedirs(os.path.join(where, "constant", "polyMesh"))
+        with open(os.path.join(where, "constant", "polyMesh", "owner"), "w") as f:
+            f.write('FoamFile\n{\n    note        "nPoints:294  nCells:120  nFaces:506  nInternalFaces:214";\n}\n')
+        check("the mesh's cell count from its owner header", mesh_cells(where) == 120, mesh_cells(where))
+        try:
+            decompose(where, 121)
+            check("121 ranks for 120 cells refused", False)
+        except RunError as e:
+            check("121 ranks for 120 cells refused, the fix named", "121 ranks for a mesh of 120 cells" in str(e)
+                  and "at most 120 ranks" in str(e), str(e))
 
     # A run resumed at 1 s of 20 s that reached 1.5 s in 60 s of wall: 18.5 s left at 0.5 s per
     # minute is 37 min (the rate since the start of the whole run, 1.5 s per minute, said 12 min)
