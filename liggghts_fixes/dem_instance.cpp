@@ -24,6 +24,7 @@
 
 #include "atom.h"
 #include "atom_vec.h"
+#include "comm.h"
 #include "dem_console.h"
 #include "domain.h"
 #include "fix_gravity.h"
@@ -433,6 +434,10 @@ long long DemInstance::step() const { return static_cast<long long>(lmp_->update
 std::size_t DemInstance::local_count() const { return static_cast<std::size_t>(lmp_->atom->nlocal); }
 
 std::size_t DemInstance::ghost_count() const { return static_cast<std::size_t>(lmp_->atom->nghost); }
+
+std::array<int, 3> DemInstance::processor_grid() const {
+  return {lmp_->comm->procgrid[0], lmp_->comm->procgrid[1], lmp_->comm->procgrid[2]};
+}
 
 const double *DemInstance::positions() const { return local_count() ? lmp_->atom->x[0] : nullptr; }
 

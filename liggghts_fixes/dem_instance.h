@@ -5,6 +5,7 @@
 #ifndef TFDEM_DEM_INSTANCE_H
 #define TFDEM_DEM_INSTANCE_H
 
+#include <array>
 #include <mpi.h>
 
 #include <cstddef>
@@ -85,6 +86,8 @@ class DemInstance : public ParticleEngine {
   // Particles on this rank and their per-atom arrays (x, v: 3 per atom; radius, mass: 1).
   std::size_t local_count() const override;
   std::size_t ghost_count() const override;
+  // LIGGGHTS' processor grid (ranks along x, y, z), its even cuts of the box
+  std::array<int, 3> processor_grid() const;
   const double *positions() const override;
   const double *velocities() const override;
   const double *radii() const override;

@@ -245,6 +245,33 @@ void Foam::TfdemCoupling::startDem(const vector& g)
                static_cast<const tfdem::DemInstance&>(*dem_).time_step()
            )
         << " DEM steps per gas step" << nl << endl;
+    demBalance();
+}
+
+
+void Foam::TfdemCoupling::demBalance() const
+{
+    if (TfdemRanks::count() < 2)
+    {
+        return;
+    }
+    const std::array<int, 3> grid =
+        static_cast<const tfdem::DemInstance&>(*dem_).processor_grid();
+    double most = dem_->local_count(), least = most, total = most;
+    MPI_Allreduce(MPI_IN_PLACE, &most, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+    MPI_Allreduce(MPI_IN_PLACE, &least, 1, MPI_DOUBLE, MPI_MIN, MPI_COMM_WORLD);
+    MPI_Allreduce(MPI_IN_PLACE, &total, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+    const double mean = total/TfdemRanks::count();
+    Info<< "TFDEM parallel: LIGGGHTS' processor grid " << grid[0] << " x " << grid[1] << " x "
+        << grid[2] << " (even cuts of the box): particles per rank " << least << " to " << most
+        << ", mean " << mean;
+    if (mean > 0 && most > kDemImbalance*mean)
+    {
+        Info<< ". TFDEM advice: the fullest rank holds " << most/mean << " times the mean and"
+            << " the others wait for it every DEM step (its cuts leave ranks in the freeboard)."
+            << " Fix: cut only across the bed (processors * 1 1; * 1 * for a 3-D bed)";
+    }
+    Info<< nl << endl;
 }
 
 

@@ -126,7 +126,7 @@ def bed_geometry(case):
 # Measure ------------------------------------------------------------------------------------
 def set_processors(case, spec):
     path = case.dem_script()
-    text = re.sub(r"(?m)^processors\s+.*$", f"processors      {spec}", open(path).read())
+    text = re.sub(r"(?m)^processors[ \t]+.*$", f"processors      {spec}", open(path).read())
     open(path, "w").write(text)
 
 

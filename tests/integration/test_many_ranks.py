@@ -8,9 +8,12 @@ another. A dump per rank (LIGGGHTS' `%` in the file name: each rank writes its o
 every 50 DEM steps tells each sphere's rank, and so counts the crossings: the test shows they
 happen. Expected, exactly: the data file's 2400 spheres in every statistics sample and in
 every snapshot, each owned by one rank, and the bed's mass unchanged. Measured: ~900
-crossings, in ~9 of 10 intervals of 1 ms.
+crossings, in ~9 of 10 intervals of 1 ms. The start reports LIGGGHTS' grid (4 x 1 x 1) and
+the particles per rank, without advice; the same bed cut `* * 1` on 2 ranks (LIGGGHTS halves
+the 90 cm column in y, above the 14 cm bed) is advised to cut across the bed instead.
 """
 import os
+import re
 import shutil
 
 from tfdem import SOURCE_DIR, TUTORIALS
@@ -36,6 +39,19 @@ def jet_bed_on_ranks():
     decompose(case.path, RANKS)
     _, output = run(["tfdemFoam"], case.path, "log.tfdemFoam", RANKS, gas="split")
     return case, output
+
+
+def cut_in_y(case, _cache={}):
+    """The start of the same bed on 2 ranks with `processors * * 1` (two gas steps)."""
+    if "output" not in _cache:
+        copy = Case(case.path).copy_to(scratch("many_ranks_jet_cut_in_y"), extra=data_file_of(case))
+        path = copy.dem_script()
+        text = re.sub(r"(?m)^processors[ \t]+.*$", "processors      * * 1", open(path).read())
+        open(path, "w").write(text)
+        copy.set_control(endTime=2 * float(copy.control("deltaT")), writeInterval=1.0)
+        run(["blockMesh"], copy.path, "log.blockMesh")
+        _cache["output"] = run(["tfdemFoam"], copy.path, "log.tfdemFoam", 2, gas="whole")[1]
+    return _cache["output"]
 
 
 def rank_frames(case):
@@ -98,6 +114,13 @@ def main():
                 f" {max(crossings)} in one)")
     checks.true("the run reports cell records exchanged between ranks",
                 "cell records received from particles on other ranks" in output)
+    grid = re.search(r"LIGGGHTS' processor grid (\d+) x (\d+) x (\d+) \(even cuts of the box\): particles per rank"
+                     r" (\S+) to (\S+), mean (\S+)", output)
+    checks.true("the start reports the DEM grid 4 x 1 x 1 and 600 particles a rank on average, no advice",
+                grid is not None and grid.group(1, 2, 3) == ("4", "1", "1") and float(grid.group(6)) == 600
+                and "the fullest rank holds" not in output, grid.group(0) if grid else "(no line)")
+    checks.true("cut * * 1 on 2 ranks: the empty upper rank is named and the fix given",
+                "the fullest rank holds 2 times the mean" in cut_in_y(case) and "processors * 1 1" in cut_in_y(case))
     checks.finish()
 
 
