@@ -5,9 +5,9 @@
 #ifndef TFDEM_DEM_INSTANCE_H
 #define TFDEM_DEM_INSTANCE_H
 
-#include <array>
 #include <mpi.h>
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <functional>

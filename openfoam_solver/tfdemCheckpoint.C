@@ -270,12 +270,16 @@ void Foam::TfdemCheckpoint::readStart(const wordList& marked)
     const bool redecomposed =
         layout_ == "split" && start_.layout == "split"
      && start_.ranks != TfdemRanks::count();
+    const auto verifiable = [redecomposed](const std::string& path)
+    {
+        return !redecomposed || path.compare(0, 9, "processor") != 0;
+    };
     std::string problems;
     if (TfdemRanks::rank() == 0)
     {
         for (const std::string& c : tfdem::changed_files(start_, runTime_.globalPath()))
         {
-            if (!redecomposed || c.compare(0, 9, "processor") != 0)
+            if (verifiable(c))
             {
                 problems += "\n    " + c;
             }
@@ -362,7 +366,7 @@ void Foam::TfdemCheckpoint::readStart(const wordList& marked)
     for (const auto& f : start_.files)
     {
         lastBytes_ += f.digest.size;
-        verified += !redecomposed || f.path.compare(0, 9, "processor") != 0;
+        verified += verifiable(f.path);
     }
     Info<< "TFDEM checkpoint: resuming gas and particles from t = " << start << " s ("
         << (start_.dem_restart ? (directory(start)/restartName).c_str() : "no particles")

@@ -24,9 +24,9 @@ Description
 #include "tfdemCase.H"
 #include "tfdemCoupling.H"
 #include "tfdemFailure.H"
-#include "tfdemStop.H"
 #include "tfdemRanks.H"
 #include "tfdemStartupChecks.H"
+#include "tfdemStop.H"
 #include "tfdemTime.H"
 
 #include <chrono>

@@ -39,15 +39,6 @@ std::vector<Type> allGathered(const Type* mine, int count, MPI_Datatype type)
     return all;
 }
 
-} // End anonymous namespace
-
-
-bool Foam::TfdemRanks::gasWhole_ = false;
-bool Foam::TfdemRanks::startedMpi_ = false;
-
-
-namespace
-{
 
 //- processor0, processor1, ... in the case folder (-case, else the working folder)
 int decomposedCount(int argc, char* argv[])
@@ -105,7 +96,11 @@ void checkDecomposition(int argc, char* argv[])
     std::exit(1);
 }
 
-}  // namespace
+} // End anonymous namespace
+
+
+bool Foam::TfdemRanks::gasWhole_ = false;
+bool Foam::TfdemRanks::startedMpi_ = false;
 
 
 void Foam::TfdemRanks::start(int argc, char* argv[])

@@ -24,6 +24,7 @@ import subprocess
 import tempfile
 import time
 
+import numpy as np
 import yaml
 
 from tfdem import SOURCE_DIR, outputs
@@ -54,19 +55,24 @@ def bed_yaml(count, cell_diameters):
             "run": {"end_time": 1.0, "write_interval": 1.0}}
 
 
+def lattice_positions(count):
+    """(count, 3) centres of the cubic lattice filled row by row from the floor: `across` spheres
+    along x and z, rows up y."""
+    across, _ = lattice_shape(count)
+    k = np.arange(count)
+    sites = np.column_stack([k % across, k // across ** 2, (k // across) % across])
+    return (sites + 0.5) * (SPACING * DIAMETER)
+
+
 def write_lattice(path, count, box):
     """A LIGGGHTS data file (atom_style granular, 2 atom types: spheres and walls) of `count`
     spheres at rest on a cubic lattice in the box from the floor up."""
-    across, _ = lattice_shape(count)
-    spacing = SPACING * DIAMETER
     with open(path, "w") as f:
         f.write(f"TFDEM lattice bed of {count} spheres\n\n{count} atoms\n2 atom types\n\n")
         for axis, extent in zip("xyz", box):
             f.write(f"0 {extent!r} {axis}lo {axis}hi\n")
         f.write("\nAtoms\n\n")
-        for k in range(count):
-            i, j, row = k % across, (k // across) % across, k // across ** 2
-            x, y, z = ((n + 0.5) * spacing for n in (i, row, j))
+        for k, (x, y, z) in enumerate(lattice_positions(count).tolist()):
             f.write(f"{k + 1} 1 {DIAMETER!r} {DENSITY!r} {x!r} {y!r} {z!r} 0 0 0\n")
 
 

@@ -296,13 +296,9 @@ def predict(args):
 
 
 def lattice(count):
-    across, rows = memory.lattice_shape(count)
-    spacing = memory.SPACING * memory.DIAMETER
-    k = np.arange(count)
-    i, j, row = k % across, (k // across) % across, k // across ** 2
-    positions = np.column_stack([(i + 0.5) * spacing, (row + 0.5) * spacing, (j + 0.5) * spacing])
+    """memory.py's lattice bed: its centres and its box."""
     box = memory.bed_yaml(count, 4)["box"]
-    return positions, (0.0, 0.0, 0.0), (box["width"], box["height"], box["depth"])
+    return memory.lattice_positions(count), (0.0, 0.0, 0.0), (box["width"], box["height"], box["depth"])
 
 
 def _lattice_cells(count):

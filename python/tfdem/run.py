@@ -4,6 +4,7 @@ import re
 import subprocess
 
 from tfdem import BUILD_DIR, SOURCE_DIR
+from tfdem.outputs import times
 
 
 class RunError(Exception):
@@ -85,18 +86,9 @@ def write_decompose_dict(case_path, split):
 
 
 def split_times(case_path):
-    """The times a split run wrote (processor0's time folders after 0), oldest first."""
+    """The time folders a split run wrote (processor0's after 0), oldest first."""
     folder = os.path.join(case_path, "processor0")
-    names = os.listdir(folder) if os.path.isdir(folder) else []
-    return sorted(float(n) for n in names if _is_number(n) and float(n) > 0)
-
-
-def _is_number(name):
-    try:
-        float(name)
-    except ValueError:
-        return False
-    return True
+    return [t for t in times(folder) if float(t) > 0] if os.path.isdir(folder) else []
 
 
 def mesh_cells(case_path):
@@ -130,12 +122,8 @@ def reconstruct(case_path):
     """A case whose newest time a split run wrote (its gas fields in processor*/ alone; the
     checkpoint's DEM restart and marker are at the top) made whole for a whole or serial run
     (reconstructPar -latestTime); True when it did."""
-    folder = os.path.join(case_path, "processor0")
-    names = [n for n in os.listdir(folder) if _is_number(n) and float(n) > 0] if os.path.isdir(folder) else []
-    if not names:
-        return False
-    newest = max(names, key=float)
-    if os.path.isfile(os.path.join(case_path, newest, "p")):
+    names = split_times(case_path)
+    if not names or os.path.isfile(os.path.join(case_path, names[-1], "p")):
         return False
     run(["reconstructPar", "-latestTime"], case_path, "log.reconstructPar")
     return True

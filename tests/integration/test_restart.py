@@ -30,9 +30,8 @@ import time
 from tfdem import TUTORIALS
 from tfdem.case import Case
 from tfdem.outputs import joined_series, probes
-from tfdem.fixed_bed import FixedBed
 from tfdem.run import RunError, decompose, prepare_gas, run, start
-from tfdem_testlib import Checks, scratch
+from tfdem_testlib import PACKED_BED, Checks, packed_bed_copy, scratch
 
 END_TIME, WRITE_INTERVAL, KILL_AFTER = 0.2, 0.1, 0.15
 
@@ -110,24 +109,12 @@ def check_incomplete_checkpoint(checks, case):
                 "the checkpoint at t = 0.2 s is incomplete" in output and "start from the time before" in output)
 
 
-PACKED_BED = FixedBed(os.path.join(TUTORIALS, "packed_bed_ergun"))
-
-
-def packed(name, end_time):
-    """The packed bed at 0.6 m/s, meshed, to end_time, writing every 0.2 s."""
-    case = PACKED_BED.case.copy_to(scratch(name), extra=PACKED_BED.extra_files())
-    case.set_patch_value("U", "inlet", (0, 0.6, 0))
-    case.set_control(endTime=end_time, writeInterval=0.2)
-    run(["blockMesh"], case.path, "log.blockMesh")
-    return case
-
-
 def check_other_counts(checks):
     source = PACKED_BED
-    straight = packed("counts_straight", 0.4)
+    straight = packed_bed_copy("counts_straight", 0.4)
     run(["tfdemFoam"], straight.path, "log.tfdemFoam")
     expected = source.measured_pressure_drop(straight.path)
-    written = packed("counts_written", 0.2)
+    written = packed_bed_copy("counts_written", 0.2)
     prepare_gas(written.path, 2, "split")
     run(["tfdemFoam"], written.path, "log.tfdemFoam", 2, gas="split")
     written.set_control(endTime=0.4, startFrom="latestTime")
@@ -165,7 +152,7 @@ def check_stop_by_signal(checks, expected, ranks, sig):
     """A run sent `sig` (to mpirun, which forwards it, or to the one solver) stops at a joint
     checkpoint with exit status 75; resumed, it ends as the straight serial run."""
     label = f"{signal.Signals(sig).name} to {'mpirun of ' + str(ranks) + ' ranks' if ranks > 1 else 'the solver'}"
-    case = packed(f"stopped_{ranks}_{sig}", 0.4)
+    case = packed_bed_copy(f"stopped_{ranks}_{sig}", 0.4)
     proc = start(["tfdemFoam"], case.path, "log.stopped", ranks, "whole")
     log = case.file("log.stopped")
     while proc.poll() is None and "\nTime = 0.1\n" not in open(log, errors="replace").read():

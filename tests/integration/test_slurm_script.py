@@ -13,20 +13,11 @@ import signal
 import subprocess
 import time
 
-from tfdem import SOURCE_DIR, TUTORIALS
-from tfdem.fixed_bed import FixedBed
+from tfdem import SOURCE_DIR
 from tfdem.run import environment, run
-from tfdem_testlib import Checks, scratch
+from tfdem_testlib import PACKED_BED, Checks, packed_bed_copy
 
-BED = FixedBed(os.path.join(TUTORIALS, "packed_bed_ergun"))
 SCRIPT = os.path.join(SOURCE_DIR, "scripts", "tfdem.slurm")
-
-
-def packed(name):
-    case = BED.case.copy_to(scratch(name), extra=BED.extra_files())
-    case.set_patch_value("U", "inlet", (0, 0.6, 0))
-    case.set_control(endTime=0.4, writeInterval=0.2)
-    return case
 
 
 def job(case, ranks, job_id, stop_after=None, layout=None):
@@ -54,12 +45,11 @@ def job(case, ranks, job_id, stop_after=None, layout=None):
 
 def main():
     checks = Checks()
-    straight = packed("slurm_straight")
-    run(["blockMesh"], straight.path, "log.blockMesh")
+    straight = packed_bed_copy("slurm_straight", 0.4)
     run(["tfdemFoam"], straight.path, "log.tfdemFoam")
-    expected = BED.measured_pressure_drop(straight.path)
+    expected = PACKED_BED.measured_pressure_drop(straight.path)
 
-    case = packed("slurm_jobs")
+    case = packed_bed_copy("slurm_jobs", 0.4, mesh=False)  # the script meshes
     code, log = job(case, 2, 1, stop_after=0.1)
     checks.true("job 1, 2 ranks: the rule keeps 120 cells whole", "120 cells on 2 ranks, the gas whole: as the measured"
                 " rule has it" in log)
@@ -77,7 +67,7 @@ def main():
                 stop is not None and f"resuming gas and particles from t = {stop.group(1)} s" in log
                 and "made from the split checkpoint's on 3 rank(s)" in log)
     checks.true("job 3: ran to the end, exit 0", code == 0 and "\nEnd\n" in log, f"(exit {code})")
-    checks.close("job 3: pressure drop at 0.4 s vs the straight serial run (Pa)", BED.measured_pressure_drop(case.path),
+    checks.close("job 3: pressure drop at 0.4 s vs the straight serial run (Pa)", PACKED_BED.measured_pressure_drop(case.path),
                  expected, 1e-8)
     checks.finish()
 
