@@ -11,9 +11,17 @@ namespace
 volatile std::sig_atomic_t received = 0;
 int agreedSignal = 0;
 
+// The first signal asks for the checkpoint; a second one (a run stuck before its next gas
+// step, or an impatient user) ends the process at once, as the signal would without us
 void handler(int signal)
 {
-    if (received == 0) received = signal;
+    if (received == 0)
+    {
+        received = signal;
+        return;
+    }
+    ::signal(signal, SIG_DFL);
+    ::raise(signal);
 }
 
 } // End anonymous namespace

@@ -823,6 +823,7 @@ solver=(tfdemFoam)
 if [ "$ranks" -gt 1 ]; then
     cells=$(sed -n 's/^ *nCells: *//p' log.blockMesh)
     layout=${{TFDEM_GAS_LAYOUT:-$(tfdem-gas-layout "$cells" "$ranks")}}
+    case "$layout" in whole|split) ;; *) echo "TFDEM_GAS_LAYOUT=$layout: give whole or split" >&2; exit 2 ;; esac
     solver=(mpirun -np "$ranks" tfdemFoam)
     if [ "$layout" = split ]; then
         "$TFDEM_PYTHON" -m tfdem.run decompose . "$ranks" > log.decompose

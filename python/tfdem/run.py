@@ -104,8 +104,9 @@ def mesh_cells(case_path):
 def decompose(case_path, ranks):
     """Decompose the case's mesh and fields for `ranks` ranks, the gas split in x in equal
     parts (as LIGGGHTS' `processors * 1 1` cuts the particles). A case a split run has written
-    is first reconstructed at its newest time (reconstructPar -latestTime), then that time is
-    decomposed anew: its checkpoint resumes on the new count (startFrom latestTime)."""
+    is first reconstructed (reconstructPar of every time: each checkpoint's gas fields kept whole
+    before decomposePar -force deletes the old processor*/), then its newest time is decomposed
+    anew: that checkpoint resumes on the new count (startFrom latestTime)."""
     cells = mesh_cells(case_path)
     if cells is not None and ranks > cells:
         raise RunError(f"{case_path}: {ranks} ranks for a mesh of {cells} cells: a rank would own no gas cell. "
@@ -113,7 +114,7 @@ def decompose(case_path, ranks):
                        "mpirun without -parallel)")
     resumed = bool(split_times(case_path))
     if resumed:
-        run(["reconstructPar", "-latestTime"], case_path, "log.reconstructPar")
+        run(["reconstructPar"], case_path, "log.reconstructPar")
     write_decompose_dict(case_path, (ranks, 1, 1))
     run(["decomposePar", "-force"] + (["-latestTime"] if resumed else []), case_path, "log.decomposePar")
 

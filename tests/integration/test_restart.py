@@ -12,7 +12,8 @@ without its marker (a run killed while writing it) is refused as a start time.
 
 On another rank count (the packed bed at 0.6 m/s, steady, so round-off does not grow): a
 checkpoint written at 0.2 s by 2 ranks with the gas split resumes to 0.4 s on 3 ranks split
-(re-decomposed by tfdem.run.decompose: reconstructPar, decomposePar -latestTime), on 1 rank
+(re-decomposed by tfdem.run.decompose: reconstructPar of every time, so the older checkpoint
+at 0.1 s keeps its gas fields, then decomposePar -latestTime), on 1 rank
 (reconstructPar) and on 4 ranks with the gas whole; each ends with the straight serial run's
 pressure drop to 1e-8 (the parallel identity test's tolerance). Run on 3 ranks without
 re-decomposing, it stops before OpenFOAM would, naming both counts and the fixes.
@@ -115,6 +116,7 @@ def check_other_counts(checks):
     run(["tfdemFoam"], straight.path, "log.tfdemFoam")
     expected = source.measured_pressure_drop(straight.path)
     written = packed_bed_copy("counts_written", 0.2)
+    written.set_control(writeInterval=0.1)  # two checkpoints: 0.1 s and the one resumed, 0.2 s
     prepare_gas(written.path, 2, "split")
     run(["tfdemFoam"], written.path, "log.tfdemFoam", 2, gas="split")
     written.set_control(endTime=0.4, startFrom="latestTime")
@@ -135,6 +137,8 @@ def check_other_counts(checks):
         case = copy_of_written(f"counts_on_{ranks}_{gas}")
         if gas == "split":
             decompose(case.path, ranks)
+            checks.true(f"{label}: re-decomposed, the older checkpoint (0.1 s) keeps its gas fields, whole",
+                        all(os.path.isfile(case.file("0.1", f)) for f in ("p", "U", "voidFraction")))
         else:
             run(["reconstructPar", "-latestTime"], case.path, "log.reconstructPar")
         _, output = run(["tfdemFoam"], case.path, "log.tfdemFoam", ranks, gas="split" if gas == "split" else "whole")
