@@ -111,6 +111,19 @@ def check_refined_runs():
     check("a run of its own gas step pairs with the finer grids, not its own",
           grid_pairs(runs, list(runs)) == (("c", "f"), ("c", "ff"), ("c_step", "f"), ("c_step", "ff"), ("f", "ff")),
           str(grid_pairs(runs, list(runs))))
+    from replicates import ranks_pairs
+    runs["c_4"] = {"bed": "jet", "ranks": 4}
+    runs["f_4"] = {"bed": "jet", "refine_y": 2, "ranks": 4, "gas": "split"}
+    check("ranks pairs: the same run on 1 and N ranks, any gas layout; no cross-grid pair",
+          ranks_pairs(runs, list(runs)) == (("c", "c_4"), ("f", "f_4")), str(ranks_pairs(runs, list(runs))))
+    check("a run on N ranks pairs with no grid", ("c_4", "f_4") not in grid_pairs(runs, list(runs))
+          and ("c", "c_4") not in grid_pairs(runs, list(runs)), str(grid_pairs(runs, list(runs))))
+    del runs["c_4"], runs["f_4"]
+    for line, expect in (("jet_r: {bed: jet, ranks: 0}", "run jet_r: ranks must be a whole number of MPI ranks"),
+                         ("jet_r: {bed: jet, ranks: 2.5}", "run jet_r: ranks must be a whole number of MPI ranks"),
+                         ("jet_r: {bed: jet, ranks: 2, gas: halved}", "run jet_r: gas: gas layout 'halved'")):
+        message = study_refusal(line)
+        check(f"refused: {line}", expect in message, message)
     del runs["c_step"]
     check("a separated run pairs with no grid", grid_pairs(runs, list(runs)) == (("c", "f"), ("c", "ff"), ("f", "ff")),
           str(grid_pairs(runs, list(runs))))

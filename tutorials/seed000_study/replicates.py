@@ -71,6 +71,15 @@ def step_pairs(runs, configs):
                         and "gas_step" in runs[b] and _rest(runs[a], ("gas_step",)) == _rest(runs[b], ("gas_step",))))
 
 
+def ranks_pairs(runs, configs):
+    """(one rank, N ranks) pairs of configurations that differ in study.yaml's ranks and gas
+    layout alone, e.g. uniform_m1 and uniform_m1_ranks4: a chaotic bed on more ranks is another
+    realization, so its statistics are to agree within the replicate noise, not bit for bit."""
+    keys = ("ranks", "gas")
+    return tuple(sorted((a, b) for a in configs for b in configs if runs[a].get("ranks", 1) == 1
+                        and runs[b].get("ranks", 1) > 1 and _rest(runs[a], keys) == _rest(runs[b], keys)))
+
+
 BLOCK_KEY = "coupling.void_fraction.particle_field_block"
 
 
@@ -241,6 +250,9 @@ class Replicates:
     def step_pairs(self):
         return step_pairs(self.report.study["runs"], list(self.groups))
 
+    def ranks_pairs(self):
+        return ranks_pairs(self.report.study["runs"], list(self.groups))
+
     def separation_pairs(self):
         """The map comparisons of the separation test: the separated run against fine and coarse."""
         return tuple(p for c, s, f in self.separation_triples() for p in ((s, f), (c, s)))
@@ -266,7 +278,8 @@ class Replicates:
                 for config in self.groups:
                     maps, rows = self.maps(config, w, symmetric)
                     floors.setdefault(config, {})[w + tag] = l1_noise_floor(maps, rows)
-                for a, b in METHOD_PAIRS + self.grid_pairs() + self.separation_pairs() + self.step_pairs():
+                for a, b in (METHOD_PAIRS + self.grid_pairs() + self.separation_pairs() + self.step_pairs()
+                             + self.ranks_pairs()):
                     if a in self.groups and b in self.groups:
                         (ma, rows), (mb, _) = self.maps(a, w, symmetric), self.maps(b, w, symmetric)
                         cross = cross_l1(ma, mb, rows)
@@ -286,7 +299,8 @@ class Replicates:
         for kind, pairs in (("method 2 - method 1", METHOD_PAIRS), ("fine - coarse", self.grid_pairs()),
                             ("coarse field - fine", tuple((f, s) for _, s, f in separation)),
                             ("coarse field - coarse", tuple((c, s) for c, s, _ in separation)),
-                            ("own gas step - template's", self.step_pairs())):
+                            ("own gas step - template's", self.step_pairs()),
+                            ("N ranks - 1 rank", self.ranks_pairs())):
             for a, b in pairs:
                 if a not in ensembles or b not in ensembles:
                     continue

@@ -25,7 +25,7 @@ from tfdem.batch import BatchError, CaseRun, clock, run_batch
 from tfdem.bed import write_bed_probes
 from tfdem.case import Case, CaseError, set_dict_entries
 from tfdem.packing import pour, set_atom_types
-from tfdem.run import RunError, environment, run
+from tfdem.run import DEFAULT_GAS_LAYOUT, RunError, check_gas_layout, command, environment, prepare_gas, run
 
 STUDY_DIR = os.path.dirname(os.path.abspath(__file__))
 
@@ -34,7 +34,7 @@ class StudyError(Exception):
     """A study definition or run problem, named."""
 
 
-RUN_KEYS = ("bed", "coupling", "refine_x", "refine_y", "gas_step", "tfm")
+RUN_KEYS = ("bed", "coupling", "refine_x", "refine_y", "gas_step", "tfm", "ranks", "gas")
 
 
 def load_study(path=os.path.join(STUDY_DIR, "study.yaml")):
@@ -61,6 +61,16 @@ def load_study(path=os.path.join(STUDY_DIR, "study.yaml")):
         if "gas_step" in spec and (isinstance(step, bool) or not (isinstance(step, (int, float)) and step > 0)):
             raise StudyError(f"{path}: run {name}: gas_step must be a time step in seconds above 0, "
                              f"got {spec['gas_step']!r}")
+        ranks = spec.get("ranks", 1)
+        if isinstance(ranks, bool) or not (isinstance(ranks, int) and ranks >= 1):
+            raise StudyError(f"{path}: run {name}: ranks must be a whole number of MPI ranks, 1 or more, got {ranks!r}")
+        if "gas" in spec:
+            try:
+                check_gas_layout(spec["gas"])
+            except ValueError as e:
+                raise StudyError(f"{path}: run {name}: gas: {e}") from None
+        if spec.get("tfm") and ("ranks" in spec or "gas" in spec):
+            raise StudyError(f"{path}: run {name}: ranks and gas are for the coupled runs; the TFM runs are serial")
         if spec.get("tfm") and (spec.get("refine_x", 1) != 1 or "gas_step" in spec):
             raise StudyError(f"{path}: run {name}: refine_x and gas_step are for the coupled runs; the TFM template "
                              "refines y only")
@@ -103,11 +113,15 @@ class Run(CaseRun):
         self.solver = "twoPhaseEulerFoam" if self.tfm else "tfdemFoam"
 
     def command(self):
-        return ["./Allsolve"] if self.tfm else [self.solver]
+        if self.tfm:
+            return ["./Allsolve"]
+        return command([self.solver], self.spec.get("ranks", 1), self.spec.get("gas", DEFAULT_GAS_LAYOUT))
 
     def complete_fields(self):
         if self.tfm:
             return ("U.air", "U.particles", "alpha.particles", "p", "Theta.particles")
+        if self.spec.get("ranks", 1) > 1 and self.spec.get("gas") == "split":
+            return ("no-resume",)  # as tfdem.bedstats: a split run's checkpoints are per processor
         return super().complete_fields()
 
     # Preparation -------------------------------------------------------------------------
@@ -149,6 +163,7 @@ class Run(CaseRun):
         run(["blockMesh"], case.path, "log.blockMesh")
         data = self._packing()
         shutil.copy(data, case.file(os.path.basename(data).replace("poured_", "")))
+        prepare_gas(case.path, self.spec.get("ranks", 1), self.spec.get("gas", DEFAULT_GAS_LAYOUT))
 
     def _prepare_tfm(self, refine):
         case = self.case
