@@ -71,16 +71,21 @@ Foam::TfdemStatistics::TfdemStatistics
             << "coupling.yaml: output.statistics_interval needs gravity (constant/g):"
             << " the force fields are in units of the particles' weight" << exit(FatalError);
     }
-    for (auto* field : {&contactForceByWeight_, &dragForceByWeight_})
+    const std::pair<std::unique_ptr<volScalarField>*, std::pair<word, dimensionSet>> fields[] =
     {
-        const word name(field == &contactForceByWeight_ ? "contactForceByWeight" : "dragForceByWeight");
-        field->reset
+        {&contactForceByWeight_, {"contactForceByWeight", dimless}},
+        {&dragForceByWeight_, {"dragForceByWeight", dimless}},
+        {&granularTemperature_, {"granularTemperature", dimVelocity*dimVelocity}}
+    };
+    for (const auto& field : fields)
+    {
+        field.first->reset
         (
             new volScalarField
             (
-                IOobject(name, runTime.timeName(), mesh, IOobject::NO_READ, IOobject::AUTO_WRITE),
+                IOobject(field.second.first, runTime.timeName(), mesh, IOobject::NO_READ, IOobject::AUTO_WRITE),
                 mesh,
-                dimensionedScalar(dimless, Zero),
+                dimensionedScalar(field.second.second, Zero),
                 zeroGradientFvPatchScalarField::typeName
             )
         );
@@ -100,7 +105,7 @@ Foam::TfdemStatistics::TfdemStatistics
     }
     Info<< "TFDEM statistics: every " << sampleSteps_ << " gas steps ("
         << options.statistics_interval << " s) to postProcessing/tfdemParticles and the"
-        << " fields contactForceByWeight, dragForceByWeight" << endl;
+        << " fields contactForceByWeight, dragForceByWeight, granularTemperature" << endl;
 }
 
 
@@ -170,7 +175,7 @@ void Foam::TfdemStatistics::writeSeriesRow
 }
 
 
-void Foam::TfdemStatistics::updateForceFields
+void Foam::TfdemStatistics::updateCellFields
 (
     const tfdem::ParticleView& p,
     const tfdem::DistributedCoupling& core
@@ -184,20 +189,33 @@ void Foam::TfdemStatistics::updateForceFields
     const std::size_t cells = grid_.cell_count();
     contactSums_.assign(3*cells, 0);
     dragSums_.assign(3*cells, 0);
+    velocityMoments_.assign(tfdem::analysis::kVelocityMoments*cells, 0);
     tfdem::analysis::add_force_sums(p, cellOfParticle_.data(), contactForce_.data(), gravity_, contactSums_);
     tfdem::analysis::add_force_sums(p, cellOfParticle_.data(), core.particle_drag().data(), gravity_, dragSums_);
-    MPI_Allreduce(MPI_IN_PLACE, contactSums_.data(), int(3*cells), MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
-    MPI_Allreduce(MPI_IN_PLACE, dragSums_.data(), int(3*cells), MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+    tfdem::analysis::add_velocity_moments
+    (
+        tfdem::centroid_weights(cellOfParticle_.data(), p.count), p, velocityMoments_
+    );
+    for (std::vector<double>* sums : {&contactSums_, &dragSums_, &velocityMoments_})
+    {
+        MPI_Allreduce(MPI_IN_PLACE, sums->data(), int(sums->size()), MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+    }
     const tfdem::analysis::ForceMaps maps = tfdem::analysis::force_maps(contactSums_, dragSums_);
+    const std::vector<double> theta = tfdem::analysis::granular_temperature(velocityMoments_);
     scalarField& contact = contactForceByWeight_->primitiveFieldRef();
     scalarField& drag = dragForceByWeight_->primitiveFieldRef();
+    scalarField& temperature = granularTemperature_->primitiveFieldRef();
     forAll(contact, celli)
     {
-        contact[celli] = maps.contact[gridCellOfCell_[celli]];
-        drag[celli] = maps.drag[gridCellOfCell_[celli]];
+        const int c = gridCellOfCell_[celli];
+        contact[celli] = maps.contact[c];
+        drag[celli] = maps.drag[c];
+        temperature[celli] = theta[c];
     }
-    contactForceByWeight_->correctBoundaryConditions();
-    dragForceByWeight_->correctBoundaryConditions();
+    for (auto* field : {&contactForceByWeight_, &dragForceByWeight_, &granularTemperature_})
+    {
+        (*field)->correctBoundaryConditions();
+    }
 }
 
 
@@ -275,7 +293,7 @@ void Foam::TfdemStatistics::record
     dem.contact_sample(contactForce_, coordination_);
     if (sampleSteps_ > 0)
     {
-        updateForceFields(p, core);
+        updateCellFields(p, core);
         if (runTime.timeIndex() % sampleSteps_ == 0)
         {
             writeSeriesRow(runTime.value(), dem, p);

@@ -151,27 +151,37 @@ double segregation_degree(const SegregationSums &s) {
   return (ratio - 1.0) / (ratio_max - 1.0);
 }
 
-std::vector<double> granular_temperature(const CellWeights &w, const ParticleView &p, std::size_t cell_count) {
-  std::vector<double> volume(cell_count, 0.0), momentum(3 * cell_count, 0.0), energy(cell_count, 0.0);
+void add_velocity_moments(const CellWeights &w, const ParticleView &p, std::vector<double> &moments) {
   for (std::size_t i = 0; i < p.count; ++i) {
     const double v = sphere_volume(p.diameter[i]);
     const double *u = p.velocity + 3 * i;
+    const double speed_sq = u[0] * u[0] + u[1] * u[1] + u[2] * u[2];
     for (std::size_t k = w.offsets[i]; k < w.offsets[i + 1]; ++k) {
-      const int c = w.cells[k];
+      double *m = &moments[kVelocityMoments * static_cast<std::size_t>(w.cells[k])];
       const double wv = w.weights[k] * v;
-      volume[c] += wv;
-      for (int a = 0; a < 3; ++a) momentum[3 * c + a] += wv * u[a];
-      energy[c] += wv * (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+      m[0] += wv;
+      for (int a = 0; a < 3; ++a) m[1 + a] += wv * u[a];
+      m[4] += wv * speed_sq;
     }
   }
-  std::vector<double> theta(cell_count, 0.0);
-  for (std::size_t c = 0; c < cell_count; ++c) {
-    if (volume[c] <= 0.0) continue;
-    const double *m = &momentum[3 * c];
-    const double mean_sq = (m[0] * m[0] + m[1] * m[1] + m[2] * m[2]) / (volume[c] * volume[c]);
-    theta[c] = std::max(0.0, energy[c] / volume[c] - mean_sq) / 3.0;  // <|v|^2> - |v_sm|^2
+}
+
+std::vector<double> granular_temperature(const std::vector<double> &moments) {
+  const std::size_t cells = moments.size() / kVelocityMoments;
+  std::vector<double> theta(cells, 0.0);
+  for (std::size_t c = 0; c < cells; ++c) {
+    const double *m = &moments[kVelocityMoments * c];
+    if (m[0] <= 0.0) continue;
+    const double mean_sq = (m[1] * m[1] + m[2] * m[2] + m[3] * m[3]) / (m[0] * m[0]);
+    theta[c] = std::max(0.0, m[4] / m[0] - mean_sq) / 3.0;  // <|v|^2> - |v_sm|^2
   }
   return theta;
+}
+
+std::vector<double> granular_temperature(const CellWeights &w, const ParticleView &p, std::size_t cell_count) {
+  std::vector<double> moments(kVelocityMoments * cell_count, 0.0);
+  add_velocity_moments(w, p, moments);
+  return granular_temperature(moments);
 }
 
 void TimeAverage::add(const std::vector<double> &field, double dt) {

@@ -13,13 +13,16 @@ import re
 import numpy
 
 from tfdem.case import CaseError
-from tfdem.outputs import joined_series, particle_statistics
+from tfdem.outputs import OutputError, joined_series, particle_statistics
 
 DP_HEIGHT = 0.2  # m: Delta p between the bottom row of cells and the row this far above it
 FIELDS = "studyFields"
 PRESSURE = "studyPressure"
-COUPLED_FIELDS = ("voidFraction", "contactForceByWeight", "dragForceByWeight")
-TFM_FIELDS = ("alpha.particles",)
+COUPLED_FIELDS = ("voidFraction", "contactForceByWeight", "dragForceByWeight", "granularTemperature")
+TFM_FIELDS = ("alpha.particles", "Theta.particles")
+# The granular temperature per cell, Theta = <|v - v_sm|^2> / 3 (seed 000 eq. 6): the coupled
+# solver's from the particles (TfdemStatistics), the TFM's transported field
+GRANULAR_TEMPERATURE = {False: "granularTemperature", True: "Theta.particles"}
 
 
 PLATE_ZONE = "distributor"  # the cell zone of a distributor plate's porous rows (tfdem new)
@@ -90,8 +93,9 @@ def write_bed_probes(case, field_interval, pressure_interval, tfm=False, dp_heig
 
 
 class BedOutputs:
-    """What a bed run wrote, as arrays: field_t and solids (samples x cells), p_t and dp, and
-    for the coupled solver the contact and drag force maps and the particle statistics."""
+    """What a bed run wrote, as arrays: field_t and solids (samples x cells), p_t and dp, theta
+    (the granular temperature per cell; None when the run did not sample it), and for the
+    coupled solver the contact and drag force maps and the particle statistics."""
 
     def __init__(self, case, tfm=False):
         self.case, self.tfm = case, tfm
@@ -108,6 +112,10 @@ class BedOutputs:
             self.contact = numpy.array([r[1] for r in joined_series(path, FIELDS, "contactForceByWeight")])
             self.drag = numpy.array([r[1] for r in joined_series(path, FIELDS, "dragForceByWeight")])
             self.particles = particle_statistics(path)
+        try:  # runs prepared before the field was sampled have none
+            self.theta = numpy.array([r[1] for r in joined_series(path, FIELDS, GRANULAR_TEMPERATURE[tfm])])
+        except OutputError:
+            self.theta = None
         p = joined_series(path, PRESSURE, "p")
         self.p_t = numpy.array([r[0] for r in p])
         self.dp = row_pressure_drop(numpy.array([r[1] for r in p]), nx)

@@ -187,6 +187,29 @@ TEST(Analysis, GranularTemperatureOfOpposedPair) {
   EXPECT_NEAR(theta[1], 0.0, 1e-15);
 }
 
+// Split over two ranks, the summed moments give the one-rank theta: by hand, cell 0 holds
+// +0.3, -0.3 and +0.6 m/s (x) of equal spheres: v_sm = 0.2, <|v|^2> = (0.09 + 0.09 + 0.36) / 3
+// = 0.18, theta = (0.18 - 0.04) / 3; a second size weighs by volume (8x at twice d).
+TEST(Analysis, GranularTemperatureFromMomentsOfRanks) {
+  Cloud first, second;
+  first.add(0.002, 0.002, 0.0, 0.002, 0.3);
+  first.add(0.004, 0.002, 0.0, 0.002, -0.3);
+  second.add(0.006, 0.002, 0.0, 0.002, 0.6);
+  const int first_cells[] = {0, 0}, second_cells[] = {0};
+  std::vector<double> moments(kVelocityMoments * 2, 0.0);
+  add_velocity_moments(centroid_weights(first_cells, 2), first.view(), moments);
+  add_velocity_moments(centroid_weights(second_cells, 1), second.view(), moments);
+  const std::vector<double> theta = granular_temperature(moments);
+  EXPECT_NEAR(theta[0], (0.18 - 0.04) / 3.0, 1e-15);
+  EXPECT_EQ(theta[1], 0.0);  // empty
+  Cloud mixed;  // d and 2d at +u and -u: v_sm = (u - 8u) / 9, <|v|^2> = u^2
+  mixed.add(0.002, 0.002, 0.0, 0.002, 0.5);
+  mixed.add(0.006, 0.002, 0.0, 0.004, -0.5);
+  const int mixed_cells[] = {0, 0};
+  EXPECT_NEAR(granular_temperature(centroid_weights(mixed_cells, 2), mixed.view(), 1)[0],
+              (0.25 - std::pow(0.5 * 7.0 / 9.0, 2)) / 3.0, 1e-15);
+}
+
 TEST(Analysis, TimeAverageWeightsByDuration) {
   TimeAverage avg;
   EXPECT_THROW(avg.mean(), std::logic_error);

@@ -7,7 +7,8 @@ particle files stay out of the repository):
     particles.csv  t, mean particle height, bulk coordination number, multicontact ratio,
                    particle count (TFM: t, the solids' mean height)
     maps.csv       the time-averaged maps (solids fraction; TF-DEM also the contact and drag
-                   force per cell) over each window the report uses, one row of cells a line
+                   force per cell; the granular temperature when the run sampled it) over each
+                   window the report uses, one row of cells a line
 
 report.py writes a Record from every finished run and computes its numbers from the Record
 read back, so the numbers from runs/ and from a clone holding only results/ are the same.
@@ -63,7 +64,7 @@ class Record:
             heights = {"t": numpy.asarray(t), "mean_height": numpy.asarray(h)}
         else:
             heights = {k: numpy.asarray(d.particles[k]) for k in ("t",) + PARTICLE_COLUMNS}
-        fields = TFM_MAPS if d.tfm else TFDEM_MAPS
+        fields = (TFM_MAPS if d.tfm else TFDEM_MAPS) + (("theta",) if d.theta is not None else ())
         maps = {window_key(*w): {f: d.field_average(getattr(d, f), *w) for f in fields} for w in windows}
         record = cls(d.name, meta, (numpy.asarray(d.p_t), numpy.asarray(d.dp)), heights, maps)
         centres = numpy.array([c[:2] for c in grid.centres()])
@@ -115,7 +116,7 @@ class Record:
         return self.particles["t"], self.particles["mean_height"]
 
     def window_map(self, field, start, end):
-        """The `field` map ("solids", "contact", "drag") averaged over [start, end] s, as (rows,
+        """The `field` map ("solids", "contact", "drag", "theta") averaged over [start, end] s, as (rows,
         columns); RecordError when the record does not keep that window or field."""
         key = window_key(start, end)
         if key not in self.maps or field not in self.maps[key]:

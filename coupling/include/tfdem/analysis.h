@@ -75,8 +75,19 @@ SegregationSums segregation_sums(const ParticleView &particles, double size_thre
 // s from completed sums; throws std::invalid_argument when one size is absent.
 double segregation_degree(const SegregationSums &sums);
 
-// Granular temperature per cell, theta = <|v - v_sm|^2> / 3 (seed 000 eq. 6), volume-
-// weighted with the mapping weights; 0 in empty cells.
+// Per-cell velocity moments behind the granular temperature, kVelocityMoments values per
+// cell: sum w V_i, sum w V_i v_i (3), sum w V_i |v_i|^2 over the particles i in the cell with
+// their mapping weights w and volumes V_i. Added to `moments` (kVelocityMoments cell_count
+// values), so that ranks can each add theirs and sum them.
+constexpr int kVelocityMoments = 5;
+void add_velocity_moments(const CellWeights &weights, const ParticleView &particles, std::vector<double> &moments);
+
+// Granular temperature per cell from summed moments, theta = <|v - v_sm|^2> / 3 (seed 000
+// eq. 6, the kinetic theory's Theta): volume-weighted <|v|^2> - |v_sm|^2 over 3; 0 in empty
+// cells. A cell with one particle has theta 0 (no fluctuation about its own mean).
+std::vector<double> granular_temperature(const std::vector<double> &moments);
+
+// The same on one rank: the moments of `particles` on `cell_count` cells.
 std::vector<double> granular_temperature(const CellWeights &weights, const ParticleView &particles,
                                          std::size_t cell_count);
 
