@@ -14,15 +14,19 @@
    and keeps its results, and the report covers it.
 """
 import json
+import math
 import os
+import re
 import shutil
 import signal
 import subprocess
 import time
 
+import numpy
 import yaml
 
-from tfdem import SOURCE_DIR
+from tfdem import SOURCE_DIR, outputs
+from tfdem.case import Case
 from tfdem.run import environment
 from tfdem_testlib import Checks, scratch
 
@@ -54,6 +58,13 @@ def check_pipeline(checks):
         path = os.path.join(root, "results", name)
         checks.true(f"results/{name} written", os.path.isfile(path) and os.path.getsize(path) > 0)
     check_from_records(checks, root, args)
+    check_granular_temperature(checks, os.path.join(root, "runs", "uniform_m1"))
+    check_tfm_budget(checks, os.path.join(root, "runs", "uniform_tfm"))
+    if os.path.isfile(os.path.join(report, "numbers.json")):
+        theta = json.load(open(os.path.join(report, "numbers.json"))).get("granular_temperature", {})
+        ratio = theta.get("uniform", {}).get("tfm_over_tfdem", float("nan"))
+        checks.true("the report compares the TFM's Theta with the particles' (uniform bed)",
+                    math.isfinite(ratio) and ratio > 0, f"(TFM / TF-DEM {ratio})")
     if os.path.isfile(os.path.join(report, "numbers.json")):
         numbers = json.load(open(os.path.join(report, "numbers.json")))
         m1 = numbers["runs"]["uniform_m1"]["0.05-0.1"]
@@ -62,6 +73,48 @@ def check_pipeline(checks):
                         and m1[key]["error"] == m1[key]["error"], f"({m1[key]})")
     code, output = study(["run"] + args)
     checks.true("a second run skips the finished runs", code == 0 and output.count("skipped") == 2)
+
+
+def check_granular_temperature(checks, run):
+    """The solver's granularTemperature field at its last write time against seed 000 eq. 6
+    recomputed here from that time's particle file: per cell of the 1 cm grid, the volume-
+    weighted <|v|^2> - |<v>|^2 over 3 of the particles whose centre is in it."""
+    case = Case(run)
+    last = [t for t in outputs.times(run) if float(t) > 0][-1]
+    theirs = numpy.array(outputs.field(run, last, "granularTemperature"))
+    particles = outputs.vtk_particles(os.path.join(run, "VTK", f"particles_{last}.vtk"))
+    grid = case.grid()
+    x, v = numpy.array(particles["position"]), numpy.array(particles["velocity"])
+    volume = numpy.array(particles["diameter"]) ** 3
+    ij = numpy.floor((x[:, :2] - numpy.array(grid.origin[:2])) / numpy.array(grid.spacing[:2])).astype(int)
+    cell = ij[:, 1] * grid.counts[0] + ij[:, 0]
+    ours = numpy.zeros(grid.counts[0] * grid.counts[1])
+    for c in numpy.unique(cell):
+        pick = cell == c
+        w = volume[pick] / volume[pick].sum()
+        mean = (w[:, None] * v[pick]).sum(axis=0)
+        ours[c] = max(0.0, (w * (v[pick] ** 2).sum(axis=1)).sum() - mean @ mean) / 3.0
+    scale = float(ours.max())
+    worst = float(numpy.max(numpy.abs(theirs - ours))) if theirs.size == ours.size else float("inf")
+    checks.true(f"granularTemperature at {last} s = eq. 6 from the particle file, cell by cell",
+                scale > 0 and worst <= 1e-6 * scale, f"(largest difference {worst:.2e} of a largest "
+                f"{scale:.3e} m^2/s^2; {int((ours > 0).sum())} cells with a fluctuation)")
+
+
+def check_tfm_budget(checks, run):
+    """tfm_budget.py on the short TFM run: it runs, writes a row per cell row, and the solids'
+    weight per area it reads from the fields is Table 1's, N pi d^2/6 (rho_p - rho_g) g / W
+    with N = 4000, d = 2.5 mm, rho_p = 2526, rho_g = 1.2 kg/m^3, W = 0.15 m: 2161.4 Pa."""
+    proc = subprocess.run(["/usr/bin/python3", os.path.join(STUDY, "tfm_budget.py"), run, "--from", "0"],
+                          env=environment(), stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    print(proc.stdout[-2000:])
+    checks.true("tfm_budget.py on the TFM run", proc.returncode == 0, f"(exit code {proc.returncode})")
+    rows = open(os.path.join(run, "tfm_budget.csv")).read().splitlines() if proc.returncode == 0 else []
+    checks.true("... a budget row per row of cells (45)", len(rows) == 46, f"({len(rows)} lines)")
+    weight = 4000 * math.pi * 0.0025 ** 2 / 6 * (2526 - 1.2) * 9.81 / 0.15
+    found = re.search(r"weight per area \((\d+) Pa\)", proc.stdout)
+    checks.true(f"... the solids' weight per area {weight:.1f} Pa", found is not None
+                and abs(float(found.group(1)) - weight) <= 1.0, f"({found.group(1) if found else 'not printed'})")
 
 
 def check_from_records(checks, root, args):

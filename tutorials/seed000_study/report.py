@@ -46,6 +46,9 @@ PAPER = {
 }
 
 
+BED_SOLIDS = 0.05  # the cells whose time-averaged solids fraction is above this are the bed's
+
+
 class RunData(BedOutputs):
     """What a finished run wrote, as arrays, with its cost: the figures' input (a Record, the
     numbers')."""
@@ -137,6 +140,59 @@ class Report:
                 "largest": float(values.max()) if values.size else float("nan"),
                 "largest_in_corners": float(ratio[corner].max()) if corner.any() else float("nan")}
 
+    def theta_numbers(self):
+        """The granular temperature (seed 000 eq. 6) of TF-DEM (method 1) against the TFM's
+        transported Theta, per bed, over the first window: the solids-weighted mean over the bed's
+        cells (time-averaged solids fraction above BED_SOLIDS), sum alpha_s Theta / sum alpha_s,
+        and the same per row of cells; for the runs whose records keep a theta map."""
+        start, end = self.windows[0]
+        out = {}
+        for bed in ("jet", "uniform"):
+            names = [n for n in (f"{bed}_m1", f"{bed}_tfm") if n in self.records
+                     and "theta" in self.records[n].maps.get(f"{start:g}-{end:g}", {})]
+            if len(names) < 2:
+                continue
+            values = {}
+            for n in names:
+                r = self.records[n]
+                solids, theta = r.window_map("solids", start, end), r.window_map("theta", start, end)
+                weight = numpy.where(solids > BED_SOLIDS, solids, 0.0)
+                rows = numpy.where(weight.sum(axis=1) > 0,
+                                   (weight * theta).sum(axis=1) / numpy.maximum(weight.sum(axis=1), 1e-300), numpy.nan)
+                values[n] = {"bed_mean": float((weight * theta).sum() / weight.sum()),
+                             "row_y": [float(y) for y in r.y[:, 0]], "rows": [float(v) for v in rows]}
+            dem, tfm = values[f"{bed}_m1"]["bed_mean"], values[f"{bed}_tfm"]["bed_mean"]
+            out[bed] = {"runs": values, "tfm_over_tfdem": tfm / dem, "window": [start, end]}
+        return out
+
+    def theta_figure(self):
+        """Granular temperature per row and per cell, TF-DEM (method 1) and TFM, each bed."""
+        theta = self.numbers.get("granular_temperature", {})
+        beds = [b for b in ("jet", "uniform") if b in theta and self.has_data(f"{b}_m1", f"{b}_tfm")]
+        if not beds:
+            return
+        start, end = self.windows[0]
+        fig, axes = plt.subplots(len(beds), 3, figsize=(9, 4.5 * len(beds)), squeeze=False)
+        for k, bed in enumerate(beds):
+            runs = theta[bed]["runs"]
+            for n, values in runs.items():
+                axes[k, 0].semilogx(values["rows"], 100 * numpy.array(values["row_y"]), label=f"{n}: bed mean "
+                                    f"{values['bed_mean']:.2e}")
+            axes[k, 0].set_xlabel("Θ (m²/s²), solids-weighted row mean", fontsize=8)
+            axes[k, 0].set_ylabel("height (cm)", fontsize=8)
+            axes[k, 0].set_ylim(0, 45)
+            axes[k, 0].legend(fontsize=6)
+            for j, n in enumerate(runs):
+                r = self.records[n]
+                t = numpy.log10(numpy.maximum(r.window_map("theta", start, end), 1e-6))
+                image = self.map_axes(axes[k, 1 + j], self.data[n], t, f"{n}: log10 Θ, {start:g}-{end:g} s",
+                                      vmin=-5, vmax=-1, cmap="magma")
+            fig.colorbar(image, ax=list(axes[k, 1:]), shrink=0.8, label="log10 Θ (m²/s²)")
+        fig.suptitle("Granular temperature: TF-DEM's particles (seed 000 eq. 6) and the TFM's Theta", fontsize=9)
+        fig.savefig(os.path.join(self.out, "fig_granular_temperature.png"), dpi=110)
+        plt.close(fig)
+        self.figures.append("fig_granular_temperature.png")
+
     def grid_l1(self, coarse, fine, start, end, symmetric=False):
         """Mean |difference| of the time-averaged solids fraction of two grids over the
         bottom 45 cm, the fine map averaged onto the coarse cells; `symmetric`: of the maps
@@ -188,7 +244,7 @@ class Report:
         return image
 
     def fig3(self):
-        names = [n for n in ("jet_m1", "jet_m2", "jet_tfm") if n in self.data]
+        names = [n for n in ("jet_m1", "jet_m2", "jet_tfm", "jet_tfm_phase_pressure") if n in self.data]
         if not names:
             return
         start, end = self.windows[0]
@@ -280,15 +336,16 @@ class Report:
         self.save(fig, filename)
 
     def fig8(self):
-        if not self.has_data("jet_m1", "jet_tfm"):
+        names = [n for n in ("jet_m1", "jet_tfm", "jet_tfm_phase_pressure") if n in self.data]
+        if "jet_m1" not in names or len(names) < 2:
             return
         start, end = self.windows[0]
-        fig, axes = plt.subplots(1, 4, figsize=(10, 5))
+        fig, axes = plt.subplots(1, 2 * len(names), figsize=(2.5 * 2 * len(names), 5))
         for k, (label, pick) in enumerate((("at %g s" % self.snapshot, lambda d: d.field_at(d.solids, self.snapshot)),
                                            ("%g-%g s" % (start, end), lambda d: d.field_average(d.solids, start, end)))):
-            for j, n in enumerate(("jet_m1", "jet_tfm")):
+            for j, n in enumerate(names):
                 d = self.data[n]
-                image = self.map_axes(axes[2 * k + j], d, pick(d), f"{n}, {label}")
+                image = self.map_axes(axes[len(names) * k + j], d, pick(d), f"{n}, {label}")
         fig.colorbar(image, ax=list(axes), shrink=0.8, label="solids fraction")
         fig.suptitle("Fig. 8: solids fraction, central-jet bed, TF-DEM (method 1) and TFM", fontsize=9)
         fig.savefig(os.path.join(self.out, "fig8_jet_dem_vs_tfm.png"), dpi=110)
@@ -296,7 +353,8 @@ class Report:
         self.figures.append("fig8_jet_dem_vs_tfm.png")
 
     def fig9(self):
-        names = [n for n in ("uniform_m1", "uniform_m2", "uniform_m2_interpolated", "uniform_tfm") if n in self.data]
+        names = [n for n in ("uniform_m1", "uniform_m2", "uniform_m2_interpolated", "uniform_tfm",
+                             "uniform_tfm_phase_pressure") if n in self.data]
         if not names:
             return
         fig, ax = plt.subplots(figsize=(8, 3.5))
@@ -312,7 +370,8 @@ class Report:
                          "fig9_uniform_mean_height.png")
 
     def fig13(self):
-        names = [n for n in ("uniform_m1", "uniform_m2", "uniform_m2_interpolated", "uniform_tfm") if n in self.data]
+        names = [n for n in ("uniform_m1", "uniform_m2", "uniform_m2_interpolated", "uniform_tfm",
+                             "uniform_tfm_phase_pressure") if n in self.data]
         if len(names) < 2:
             return
         start, end = self.windows[0]
@@ -343,6 +402,7 @@ class Report:
                     values[f"noise{tag}"] = max(self.window_l1(c, *halves, symmetric),
                                                 self.window_l1(f, *halves, symmetric))
                 self.numbers.setdefault("grid_l1", {})[f"{c} vs {f}"] = values
+        self.numbers["granular_temperature"] = self.theta_numbers()
         self.fig3()
         self.fig4()
         self.series_figure("bulk_coordination", "bulk coordination number",
@@ -358,6 +418,7 @@ class Report:
         self.force_figure("uniform_m1", "fig12_uniform_forces.png",
                           "Fig. 12: contact and drag force per cell, uniform-inflow bed")
         self.fig13()
+        self.theta_figure()
         replicates = Replicates(self, PAPER)
         self.numbers["replicates"] = replicates.numbers()
         replicates.figure(self)
@@ -390,7 +451,8 @@ class Report:
             lines += ["From their records only (no run folder, so in no figure): "
                       f"{', '.join(self.numbers['from_records_only'])}", ""]
         lines += ["| quantity | run | paper | ours " + w0 + " s | ours " + w1 + " s |", "|---|---|---|---|---|"]
-        rows = [("Δp at 20 cm (Pa), jet", r, "figure only (Fig. 3)", "dp20", 1.0) for r in ("jet_m1", "jet_m2", "jet_fine_m1", "jet_tfm")]
+        rows = [("Δp at 20 cm (Pa), jet", r, "figure only (Fig. 3)", "dp20", 1.0)
+                for r in ("jet_m1", "jet_m2", "jet_fine_m1", "jet_tfm", "jet_tfm_phase_pressure")]
         rows += [("bulk coordination number, jet", r, PAPER["bulk_coordination_jet"], "bulk_coordination", 1.0)
                  for r in ("jet_m1", "jet_m2")]
         rows += [("bulk coordination number, uniform", r, PAPER["bulk_coordination_uniform"], "bulk_coordination", 1.0)
@@ -399,7 +461,8 @@ class Report:
         rows += [("multicontact ratio, uniform", r, PAPER["multicontact_uniform"], "multicontact", 1.0)
                  for r in ("uniform_m1", "uniform_m2")]
         for r, key in (("uniform_m1", "mean_height_m1"), ("uniform_m2", "mean_height_m2"),
-                       ("uniform_m2_interpolated", "mean_height_m2"), ("uniform_tfm", "mean_height_tfm")):
+                       ("uniform_m2_interpolated", "mean_height_m2"), ("uniform_tfm", "mean_height_tfm"),
+                       ("uniform_tfm_phase_pressure", "mean_height_tfm")):
             rows.append(("mean particle height (cm), uniform", r,
                          f"{PAPER[key]} (experiment {PAPER['mean_height_experiment']})", "mean_height", 100.0))
         for label, run, paper, key, scale in rows:
@@ -426,6 +489,13 @@ class Report:
             for pair, v in self.numbers["grid_l1"].items():
                 lines.append(f"| {pair} | {v[w0]:.4f} | {v[w1]:.4f} | {v['noise']:.4f} | {v[w0 + ' symmetric']:.4f} | "
                              f"{v[w1 + ' symmetric']:.4f} | {v['noise symmetric']:.4f} |")
+        if self.numbers["granular_temperature"]:
+            lines += ["", "Granular temperature Θ (m²/s²; seed 000 eq. 6 from the particles, the TFM's transported "
+                          f"Theta) over {w0} s, solids-weighted over the bed's cells (time-averaged solids fraction "
+                          f"above {BED_SOLIDS}):", "", "| bed | TF-DEM (method 1) | TFM | TFM / TF-DEM |", "|---|---|---|---|"]
+            for bed, v in self.numbers["granular_temperature"].items():
+                lines.append(f"| {bed} | {v['runs'][bed + '_m1']['bed_mean']:.3g} | {v['runs'][bed + '_tfm']['bed_mean']:.3g} | "
+                             f"{v['tfm_over_tfdem']:.3g} |")
         lines += ["", "Cost on this machine (two runs side by side on its 2 cores; processor time is the "
                       "solver's own, OpenFOAM's ExecutionTime):", "",
                   "| run | wall time | processor time | processor time per simulated second |", "|---|---|---|---|"]

@@ -34,7 +34,9 @@ class StudyError(Exception):
     """A study definition or run problem, named."""
 
 
-RUN_KEYS = ("bed", "coupling", "refine_x", "refine_y", "gas_step", "tfm", "ranks", "gas")
+RUN_KEYS = ("bed", "coupling", "refine_x", "refine_y", "gas_step", "tfm", "tfm_solids", "ranks", "gas")
+# the TFM solids stress: the templates' kinetic theory, or the phase-pressure model (a file here)
+TFM_SOLIDS = {"kinetic_theory": None, "phase_pressure": "tfm_phase_pressure.particles"}
 
 
 def load_study(path=os.path.join(STUDY_DIR, "study.yaml")):
@@ -69,6 +71,9 @@ def load_study(path=os.path.join(STUDY_DIR, "study.yaml")):
                 check_gas_layout(spec["gas"])
             except ValueError as e:
                 raise StudyError(f"{path}: run {name}: gas: {e}") from None
+        if "tfm_solids" in spec and (not spec.get("tfm") or spec["tfm_solids"] not in TFM_SOLIDS):
+            raise StudyError(f"{path}: run {name}: tfm_solids is for TFM runs (tfm: true) and one of "
+                             f"{', '.join(TFM_SOLIDS)}, got {spec['tfm_solids']!r}")
         if spec.get("tfm") and ("ranks" in spec or "gas" in spec):
             raise StudyError(f"{path}: run {name}: ranks and gas are for the coupled runs; the TFM runs are serial")
         if spec.get("tfm") and (spec.get("refine_x", 1) != 1 or "gas_step" in spec):
@@ -171,6 +176,9 @@ class Run(CaseRun):
         if refine != 1:
             set_dict_entries(path, ny=int(round(float(re.search(r"(?m)^ny\s+(\d+);", open(path).read()).group(1)) * refine)))
         self._set_initial_gas(case.file("0.orig", "U.air"))
+        solids = TFM_SOLIDS[self.spec.get("tfm_solids", "kinetic_theory")]
+        if solids:
+            shutil.copy(os.path.join(STUDY_DIR, solids), case.file("constant", "turbulenceProperties.particles"))
         run(["./Allprepare"], case.path, "log.Allprepare")
 
     def _set_initial_gas(self, path):
