@@ -263,15 +263,13 @@ void DemInstance::check_data_file(const dem_script::Script &script) const {
   const std::string &file = read->words[1];
   std::ifstream in(file);
   if (!in) return;  // LIGGGHTS names it
-  std::stringstream text;
-  text << in.rdbuf();
   data_file::Boundary boundary;
   const dem_script::Command *sides = script.first("boundary");
   std::size_t count = 0;
   std::vector<std::string> outside;
   try {
     if (sides) boundary = data_file::boundary_from_words({sides->words.begin() + 1, sides->words.end()});
-    outside = data_file::atoms_outside_box(text.str(), file, boundary, 10, count);
+    outside = data_file::atoms_outside_box(in, file, boundary, 10, count);
   } catch (const std::invalid_argument &e) {
     throw std::runtime_error(read->where() + e.what());
   }

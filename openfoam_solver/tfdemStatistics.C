@@ -222,61 +222,127 @@ void Foam::TfdemStatistics::updateCellFields
 namespace
 {
 
+//- Columns [first, first + width) of every rank's particle records, gathered on rank 0
+//  (the section's values only, so rank 0 never holds every particle's whole record) and
+//  written there one particle a line, in rank order.
+void writeSection
+(
+    Foam::OFstream* out,
+    const std::vector<double>& mine,
+    int first,
+    int width,
+    bool integer,
+    const std::vector<int>& particlesOfRank
+)
+{
+    const std::size_t local = mine.size()/particleRecord;
+    std::vector<double> part(width*local);
+    for (std::size_t i = 0; i < local; ++i)
+    {
+        for (int k = 0; k < width; ++k)
+        {
+            part[width*i + k] = mine[particleRecord*i + first + k];
+        }
+    }
+    std::vector<int> sizes(particlesOfRank.size()), offsets(particlesOfRank.size() + 1, 0);
+    for (std::size_t r = 0; r < particlesOfRank.size(); ++r)
+    {
+        sizes[r] = width*particlesOfRank[r];
+        offsets[r + 1] = offsets[r] + sizes[r];
+    }
+    std::vector<double> section(out ? offsets.back() : 0);
+    MPI_Gatherv
+    (
+        part.data(), int(part.size()), MPI_DOUBLE, section.data(), sizes.data(), offsets.data(),
+        MPI_DOUBLE, 0, MPI_COMM_WORLD
+    );
+    if (!out)
+    {
+        return;
+    }
+    for (std::size_t i = 0; i < section.size(); i += width)
+    {
+        for (int k = 0; k < width; ++k)
+        {
+            *out << (k ? " " : "");
+            if (integer)
+            {
+                *out << Foam::label(section[i + k]);
+            }
+            else
+            {
+                *out << section[i + k];
+            }
+        }
+        *out << Foam::nl;
+    }
+}
+
+
+//- The particle file: every rank's records (`mine`), one VTK section at a time
 void writeVtk
 (
     const Foam::fileName& path,
-    const std::vector<double>& all,
-    Foam::scalar t
+    const std::vector<double>& mine,
+    Foam::scalar t,
+    bool writes
 )
 {
     using namespace Foam;
-    const label n = label(all.size()/particleRecord);
-    const fileName partial(path + ".tmp");
+    int local = int(mine.size()/particleRecord);
+    std::vector<int> particlesOfRank(TfdemRanks::count());
+    MPI_Allgather(&local, 1, MPI_INT, particlesOfRank.data(), 1, MPI_INT, MPI_COMM_WORLD);
+    label n = 0;
+    for (int count : particlesOfRank)
     {
-        OFstream out(partial);
-        out << "# vtk DataFile Version 3.0" << nl
+        n += count;
+    }
+    const fileName partial(path + ".tmp");
+    std::unique_ptr<OFstream> file(writes ? new OFstream(partial) : nullptr);
+    OFstream* out = file.get();
+    const auto header = [&](const std::string& text)
+    {
+        if (out)
+        {
+            *out << text.c_str() << nl;
+        }
+    };
+    if (out)
+    {
+        *out << "# vtk DataFile Version 3.0" << nl
             << "TFDEM particles at t = " << t << " s" << nl << "ASCII" << nl
             << "DATASET POLYDATA" << nl << "POINTS " << n << " double" << nl
             << setprecision(10);
-        const auto column = [&](int first, int width)
-        {
-            for (label i = 0; i < n; ++i)
-            {
-                for (int k = 0; k < width; ++k)
-                {
-                    out << (k ? " " : "") << all[particleRecord*i + first + k];
-                }
-                out << nl;
-            }
-        };
-        column(2, 3);
-        out << "VERTICES " << n << ' ' << 2*n << nl;
-        for (label i = 0; i < n; ++i)
-        {
-            out << "1 " << i << nl;
-        }
-        out << "POINT_DATA " << n << nl << "SCALARS id int 1" << nl << "LOOKUP_TABLE default" << nl;
-        for (label i = 0; i < n; ++i)
-        {
-            out << label(all[particleRecord*i]) << nl;
-        }
-        out << "SCALARS diameter double 1" << nl << "LOOKUP_TABLE default" << nl;
-        column(1, 1);
-        out << "VECTORS velocity double" << nl;
-        column(5, 3);
-        out << "SCALARS coordination int 1" << nl << "LOOKUP_TABLE default" << nl;
-        for (label i = 0; i < n; ++i)
-        {
-            out << label(all[particleRecord*i + 8]) << nl;
-        }
-        out << "VECTORS contactForce double" << nl;
-        column(9, 3);
-        out << "VECTORS dragForce double" << nl;
-        column(12, 3);
-        out << "VECTORS fluidForce double" << nl;
-        column(15, 3);
     }
-    mv(partial, path);
+    writeSection(out, mine, 2, 3, false, particlesOfRank);
+    if (out)
+    {
+        *out << "VERTICES " << n << ' ' << 2*n << nl;
+        for (label i = 0; i < n; ++i)
+        {
+            *out << "1 " << i << nl;
+        }
+        *out << "POINT_DATA " << n << nl;
+    }
+    header("SCALARS id int 1\nLOOKUP_TABLE default");
+    writeSection(out, mine, 0, 1, true, particlesOfRank);
+    header("SCALARS diameter double 1\nLOOKUP_TABLE default");
+    writeSection(out, mine, 1, 1, false, particlesOfRank);
+    header("VECTORS velocity double");
+    writeSection(out, mine, 5, 3, false, particlesOfRank);
+    header("SCALARS coordination int 1\nLOOKUP_TABLE default");
+    writeSection(out, mine, 8, 1, true, particlesOfRank);
+    header("VECTORS contactForce double");
+    writeSection(out, mine, 9, 3, false, particlesOfRank);
+    header("VECTORS dragForce double");
+    writeSection(out, mine, 12, 3, false, particlesOfRank);
+    header("VECTORS fluidForce double");
+    writeSection(out, mine, 15, 3, false, particlesOfRank);
+    file.reset();
+    if (writes)
+    {
+        mv(partial, path);
+    }
 }
 
 } // End anonymous namespace
@@ -319,23 +385,14 @@ void Foam::TfdemStatistics::record
             r[15 + k] = core.particle_force()[3*i + k];
         }
     }
-    int size = int(mine.size());
-    std::vector<int> sizes(TfdemRanks::count()), offsets(TfdemRanks::count() + 1, 0);
-    MPI_Gather(&size, 1, MPI_INT, sizes.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
-    for (int r = 0; r < TfdemRanks::count(); ++r)
-    {
-        offsets[r + 1] = offsets[r] + sizes[r];
-    }
-    std::vector<double> all(TfdemRanks::writesCase() ? offsets.back() : 0);
-    MPI_Gatherv
-    (
-        mine.data(), size, MPI_DOUBLE, all.data(), sizes.data(), offsets.data(),
-        MPI_DOUBLE, 0, MPI_COMM_WORLD
-    );
+    const fileName dir(runTime.globalPath()/"VTK");
     if (TfdemRanks::writesCase())
     {
-        const fileName dir(runTime.globalPath()/"VTK");
         mkDir(dir);
-        writeVtk(dir/("particles_" + runTime.timeName() + ".vtk"), all, runTime.value());
     }
+    writeVtk
+    (
+        dir/("particles_" + runTime.timeName() + ".vtk"), mine, runTime.value(),
+        TfdemRanks::writesCase()
+    );
 }

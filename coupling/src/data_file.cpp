@@ -38,12 +38,17 @@ Boundary boundary_from_words(const std::vector<std::string> &words) {
 
 std::vector<std::string> atoms_outside_box(const std::string &text, const std::string &file, const Boundary &boundary,
                                            std::size_t limit, std::size_t &count) {
+  std::istringstream in(text);
+  return atoms_outside_box(in, file, boundary, limit, count);
+}
+
+std::vector<std::string> atoms_outside_box(std::istream &in, const std::string &file, const Boundary &boundary,
+                                           std::size_t limit, std::size_t &count) {
   static const char *kAxis = "xyz";
   double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
   bool box[3] = {false, false, false};
   std::vector<std::string> outside;
   count = 0;
-  std::istringstream in(text);
   std::string line;
   std::getline(in, line);  // the title
   int number = 1;

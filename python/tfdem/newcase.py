@@ -687,7 +687,9 @@ def dem_script(bed, dv):
               "newton          off",
               "communicate     single vel yes",
               "units           si",
-              "processors      * * 1",
+              # LIGGGHTS cuts across the bed only, never along gravity (y): cuts in y leave the
+              # upper ranks in the freeboard and one rank with the whole bed
+              "processors      " + ("* 1 1" if dv["one_layer"] else "* 1 *"),
               "read_data       bed.data",
               f"neighbor        {_g(0.2 * sizes[-1])} bin",
               "neigh_modify    delay 0",

@@ -6,6 +6,7 @@
 #define TFDEM_DATA_FILE_H
 
 #include <cstddef>
+#include <istream>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,9 @@ Boundary boundary_from_words(const std::vector<std::string> &words);
 // drops them ("id 17 at (x, y, z) m (line 20): y is above yhi = 0.45 m"), or with a diameter
 // or position that is not a finite number (at most `limit`; `count` gets them all). Throws
 // std::invalid_argument "file:line: ..." for a header or atom line it cannot read.
+// Read from a stream line by line, so that a large file is never held in memory whole.
+std::vector<std::string> atoms_outside_box(std::istream &in, const std::string &file, const Boundary &boundary,
+                                           std::size_t limit, std::size_t &count);
 std::vector<std::string> atoms_outside_box(const std::string &text, const std::string &file, const Boundary &boundary,
                                            std::size_t limit, std::size_t &count);
 
