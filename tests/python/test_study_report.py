@@ -9,10 +9,14 @@ worked out by hand or from a closed form (no simulation):
 - tfdem.bed: Delta p at 20 cm from the row probes (also through BedOutputs on a hand-made
   case), the mirror mean, pairwise and cross L1, the noise floor, the permutation test;
 - the study's record (written and read back, a missing file named) and report.py's
-  ratio_numbers, grid_l1 and window_l1 on hand-made records.
+  ratio_numbers, grid_l1 and window_l1 on hand-made records;
+- headline.py's Fig. 8 numbers (axis profile, corners, mirror L1), its pairs table and the
+  README blocks it replaces, by hand; and the study README's generated tables are what
+  report.py makes from the committed records (results/), cell for cell.
 """
 import math
 import os
+import shutil
 import sys
 import tempfile
 
@@ -25,8 +29,11 @@ from tfdem.stats import (autocorrelation, blocking_curve, chi_square_quantile, d
                          integrated_autocorrelation_time, sokal_window, spread_ratio_range)
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tutorials", "seed000_study"))
+import headline  # noqa: E402
 import report  # noqa: E402
 from record import Record, RecordError  # noqa: E402
+
+STUDY = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tutorials", "seed000_study")
 
 failures = []
 
@@ -327,8 +334,79 @@ def check_record(root):
         check("a missing record file is named with its run", "run_a" in str(e) and "maps.csv" in str(e), str(e))
 
 
+def check_fig8_numbers():
+    # 5 x 3 cells of 2 cm (x 1, 3, 5, 7, 9 cm; y 1, 3, 5 cm); the axis x = 5 cm is column 2
+    field = numpy.array([[0.6, 0.5, 0.1, 0.4, 0.6], [0.5, 0.4, 0.2, 0.4, 0.5], [0.3, 0.3, 0.3, 0.3, 0.3]])
+    r = hand_record("f8", (5, 3), (0.02, 0.02), {"0-1": {"solids": field}})
+    check("axis profile: the mid-plane column at the nearest row centres",
+          numpy.allclose(headline.axis_profile(field, r, (0.01, 0.035, 0.05)), [0.1, 0.2, 0.3]))
+    # corners x < 3 cm or x > 7 cm, y < 4 cm: columns 0 and 4 of rows 0-1: 0.6 0.6 0.5 0.5
+    check("corner mean", close(headline.corner_mean(field, r, 0.03, 0.04), 0.55))
+    # |row - mirror|: row 0 |0.6-0.6| |0.5-0.4| 0 |0.4-0.5| 0 -> 0.2 / 5; row 1 0; row 2 0 -> 0.04 / 3
+    check("mirror L1", close(headline.mirror_l1(field, r), 0.2 / 15))
+    even = hand_record("even", (4, 1), (0.02, 0.02), {"0-1": {"solids": [[0.1, 0.2, 0.4, 0.8]]}})
+    check("axis profile on a face: the two columns beside it",
+          numpy.allclose(headline.axis_profile(numpy.array([[0.1, 0.2, 0.4, 0.8]]), even, (0.01,)), [0.3]))
+
+
+def check_pairs_and_blocks():
+    d = {"mean": 0.002, "error": 0.001, "in_errors": 2.0}
+    result = {"maps": {"comparisons": {"a vs b": {"5-20": {"cross_mean": 0.02, "within_mean": 0.01,
+                                                           "cross_over_within": 2.0, "permutation": {"p": 0.029}}}}},
+              "differences": {"fine - coarse": {"b - a": {"5-20": {
+                  "mean_height mean": d, "dp20 mean": {"mean": -30.0, "error": 10.0, "in_errors": -3.0},
+                  "dp20 std": {"mean": 5.0, "error": 5.0, "in_errors": 1.0},
+                  "bulk_coordination mean": {"mean": 0.1, "error": 0.05, "in_errors": 2.0}}}}}}
+    row = headline.pair_lines(result, "5-20")[-1]
+    check("pairs table: the row's maps and differences (height in cm)",
+          row == "| fine - coarse | `b` − `a` | 0.0200 (0.0100; 2.00; 0.029) | +0.20 ± 0.10 (+2.0) | "
+                 "-30 ± 10 (-3.0) | +5.0 ± 5.0 (+1.0) | +0.100 ± 0.050 (+2.0) |", row)
+    begin, end = headline.markers("the x")
+    text = f"top\n{begin}\nold\n{end}\nbottom\n"
+    check("replace_block: the block between the markers, the rest kept",
+          headline.replace_block(text, "the x", ["new"]) == f"top\n{begin}\n\nnew\n\n{end}\nbottom\n")
+    message = raises(headline.replace_block, "no markers", "the x", ["new"])
+    check("replace_block: missing markers named", message is not None and "the x" in message, str(message))
+
+
+def block(text, name):
+    begin, end = headline.markers(name)
+    return text[text.index(begin):text.index(end)]
+
+
+def check_readme_is_the_report(root):
+    """The study README's generated tables against a report made now from the committed records
+    (a copy of results/, no run folder): a hand edit or a stale table fails."""
+    import yaml
+    results = os.path.join(root, "results_copy")
+    shutil.copytree(os.path.join(STUDY, "results"), results)
+    readme = os.path.join(root, "README.md")
+    shutil.copy(os.path.join(STUDY, "README.md"), readme)
+    with open(os.path.join(STUDY, "study.yaml")) as f:
+        study = yaml.safe_load(f)
+    runs = [type("Run", (), {"name": n, "done": lambda self: False})() for n in _study_run_names(study)]
+    report.write_report(study, runs, study["end_time"], os.path.join(root, "report"), results, readme)
+    with open(readme) as f:
+        made = f.read()
+    with open(os.path.join(STUDY, "README.md")) as f:
+        committed = f.read()
+    for name in (headline.HEADLINE, headline.PAIRS, headline.REPLICATES):
+        check(f"study README: {name} is the report's from results/", block(made, name) == block(committed, name))
+
+
+def _study_run_names(study):
+    names = list(study["runs"])
+    seeds = (study.get("realizations") or {}).get("seeds") or []
+    for config in (study.get("realizations") or {}).get("runs") or []:
+        names += [f"{config}_r{k}" for k in range(1, len(seeds) + 1)]
+    return names
+
+
 def main():
     root = tempfile.mkdtemp()
+    check_fig8_numbers()
+    check_pairs_and_blocks()
+    check_readme_is_the_report(root)
     check_refined_runs()
     check_ensemble()
     check_blocking()

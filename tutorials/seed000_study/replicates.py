@@ -35,10 +35,6 @@ DIFFERENCE_QUANTITIES = (("dp20", "mean"), ("dp20", "std"), ("mean_height", "mea
                          ("multicontact", "mean"))
 RESOLVED = 2.0  # a difference is resolved when it is at least this many standard errors from zero
 MAP_DEPTH = 0.45  # m: the maps are compared over the cells below this height (the bed)
-# The lattice-packed jet_m1 run whose N_c the README quoted before the realizations were run
-# (README "Results"); its run folder was not kept and it ran at the former steps (DEM t_c/75,
-# gas 0.2 ms), the realizations at the templates' current ones. Used only while no record of
-# jet_m1 is in results/; a lattice run of the current settings replaces it.
 REFINEMENTS = ("refine_x", "refine_y")
 
 
@@ -105,11 +101,6 @@ def separation_triples(runs, configs):
         if coarse and fine:
             out.append((coarse, config, fine))
     return tuple(sorted(out))
-
-
-EARLIER_LATTICE_JET_NC = {"mean": 1.42, "error": 0.01, "window": "5-10",
-                          "source": "README before the realizations: jet_m1 on the lattice packing, DEM t_c/75, "
-                                    "gas step 0.2 ms; run folder not kept"}
 
 
 def pm(value, error, scale=1.0):
@@ -327,12 +318,9 @@ class Replicates:
         out = {}
         for w in self.windows:
             poured = ensembles["jet_m1"][w]["bulk_coordination"]["mean"]
-            if "jet_m1" in self.report.records:
-                lattice = dict(self.run_value("jet_m1", w, "bulk_coordination"), source="lattice run jet_m1 (results/)")
-            elif w == EARLIER_LATTICE_JET_NC["window"]:
-                lattice = dict(EARLIER_LATTICE_JET_NC)
-            else:
+            if "jet_m1" not in self.report.records:
                 continue
+            lattice = dict(self.run_value("jet_m1", w, "bulk_coordination"), source="lattice run jet_m1 (results/)")
             d = difference(lattice, poured)
             paper = self.paper["bulk_coordination_jet_value"]
             excess = lattice["mean"] - paper

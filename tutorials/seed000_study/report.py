@@ -23,6 +23,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy  # noqa: E402
 
 from record import Record  # noqa: E402
+from headline import HEADLINE, PAIRS, REPLICATES, Headline, pair_lines, replace_block  # noqa: E402
 from replicates import Replicates  # noqa: E402
 from tfdem.bed import BedOutputs, l1_difference, mirror_mean, to_grid  # noqa: E402
 from tfdem.outputs import vtk_particles  # noqa: E402
@@ -33,8 +34,10 @@ PAPER = {
     "bulk_coordination_jet": "~1.2 (Fig. 5)",
     "bulk_coordination_jet_value": 1.2,  # "varies around 1.2" (text beside Fig. 5)
     "bulk_coordination_uniform": "~0.5 (Fig. 5)",
+    "bulk_coordination_uniform_value": 0.5,
     "multicontact_jet": "> 0.6 most of the time (Fig. 11)",
     "multicontact_uniform": "~0.3 (Fig. 11)",
+    "multicontact_uniform_value": 0.3,
     "mean_height_m1": 8.9,   # cm, 5-10 s, averaged-velocity method (method 1)
     "mean_height_m2": 9.1,   # cm, per-particle method (method 2)
     "mean_height_tfm": 9.16,  # cm, TFM
@@ -47,6 +50,7 @@ PAPER = {
 
 
 BED_SOLIDS = 0.05  # the cells whose time-averaged solids fraction is above this are the bed's
+CORNER = (0.04, 0.06)  # m: the bottom corners, x within this of a wall and y below this (Fig. 7, 8)
 
 
 class RunData(BedOutputs):
@@ -74,8 +78,9 @@ def fmt(stat, scale=1.0, digits=3):
 
 
 class Report:
-    def __init__(self, study, runs, end_time, out, results):
+    def __init__(self, study, runs, end_time, out, results, study_readme=None):
         self.study, self.end_time, self.out, self.results = study, end_time, out, results
+        self.study_readme = study_readme
         self.windows = [(a * end_time, b * end_time) for a, b in study["windows"]]
         self.batch = study["batch"] * end_time / study["end_time"]
         self.snapshot = study["snapshot_time"] * end_time
@@ -128,12 +133,13 @@ class Report:
     def ratio_numbers(self, d, start, end):
         """Contact/drag ratio of the time-averaged maps over the bed's cells (time-averaged
         solids fraction above 0.1): share of cells between 2 and 10, median, largest, and the
-        largest in the bottom corners (x < 4 cm or x > W - 4 cm, y < 6 cm)."""
+        largest in the bottom corners (CORNER)."""
         contact, drag = d.window_map("contact", start, end), d.window_map("drag", start, end)
         solids = d.window_map("solids", start, end)
         bed = (solids > 0.1) & (drag > 0)
         ratio = numpy.where(drag > 0, contact / numpy.where(drag > 0, drag, 1), numpy.nan)
-        corner = bed & (d.y < 0.06) & ((d.x < 0.04) | (d.x > d.width - 0.04))
+        width, height = CORNER
+        corner = bed & (d.y < height) & ((d.x < width) | (d.x > d.width - width))
         values = ratio[bed]
         return {"share_2_to_10": float(((values >= 2) & (values <= 10)).mean()) if values.size else float("nan"),
                 "median": float(numpy.median(values)) if values.size else float("nan"),
@@ -423,15 +429,26 @@ class Report:
         self.numbers["replicates"] = replicates.numbers()
         replicates.figure(self)
         replicates.grid_figure(self)
+        headline = Headline(self, replicates, PAPER, CORNER)
+        self.numbers["fig8"] = headline.fig8_numbers() if replicates.groups else {}
+        headline_lines = headline.markdown() if replicates.groups else []
         self.numbers["figures"] = self.figures
         self.numbers["missing_runs"] = self.missing
         with open(os.path.join(self.out, "numbers.json"), "w") as f:
             json.dump(self.numbers, f, indent=1, default=float)
-        self.write_readme(replicates.markdown())
+        replicate_lines = replicates.markdown()
+        self.write_readme(headline_lines, replicate_lines)
         for name in ("numbers.json", "README.md"):
             shutil.copy(os.path.join(self.out, name), os.path.join(self.results, name))
+        if headline_lines and self.study_readme:
+            with open(self.study_readme) as f:
+                text = f.read()
+            with open(self.study_readme, "w") as f:
+                text = replace_block(text, HEADLINE, headline_lines)
+                text = replace_block(text, PAIRS, pair_lines(replicates.result, replicates.windows[-1]))
+                f.write(replace_block(text, REPLICATES, replicate_lines[2:]))
 
-    def write_readme(self, replicate_lines):
+    def write_readme(self, headline_lines, replicate_lines):
         w0 = f"{self.windows[0][0]:g}-{self.windows[0][1]:g}"
         w1 = f"{self.windows[1][0]:g}-{self.windows[1][1]:g}"
         runs = self.numbers["runs"]
@@ -450,6 +467,7 @@ class Report:
         if self.numbers["from_records_only"]:
             lines += ["From their records only (no run folder, so in no figure): "
                       f"{', '.join(self.numbers['from_records_only'])}", ""]
+        lines += ["## Seed 000's results beside ours", ""] + headline_lines + ["", "## Every run", ""]
         lines += ["| quantity | run | paper | ours " + w0 + " s | ours " + w1 + " s |", "|---|---|---|---|---|"]
         rows = [("Δp at 20 cm (Pa), jet", r, "figure only (Fig. 3)", "dp20", 1.0)
                 for r in ("jet_m1", "jet_m2", "jet_fine_m1", "jet_tfm", "jet_tfm_phase_pressure")]
@@ -510,8 +528,11 @@ class Report:
             f.write("\n".join(lines) + "\n")
 
 
-def write_report(study, runs, end_time, out, results):
-    report = Report(study, runs, end_time, out, results)
+def write_report(study, runs, end_time, out, results, study_readme=None):
+    """The report of `runs` into `out`, its numbers and README copied to `results`; with
+    study_readme (the study's README.md, for a report of the study's own length) the headline
+    table written into it between headline.py's markers."""
+    report = Report(study, runs, end_time, out, results, study_readme)
     if not report.records:
         raise SystemExit(f"report: no finished run in runs/ and no record in {results} (study.py run first)")
     report.build()

@@ -279,8 +279,10 @@ def main(argv=None):
                 return 1
             return 0
         import report
+        readme = os.path.join(args.root, "README.md")
         report.write_report(study, runs, end_time, os.path.join(args.root, "report"),
-                            os.path.join(args.root, "results"))
+                            os.path.join(args.root, "results"),
+                            readme if end_time == study["end_time"] and os.path.isfile(readme) else None)
         return 0
     except (StudyError, BatchError, CaseError, RunError) as e:
         print(f"study.py: {e}", file=sys.stderr)
