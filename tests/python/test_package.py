@@ -10,7 +10,7 @@ import tempfile
 
 import numpy
 
-from tfdem.batch import eta_seconds, variants_command_line
+from tfdem.batch import CaseRun, eta_seconds, variants_command_line
 from tfdem.bubble import coloured_above, find_bubble
 from tfdem.case import Case, CaseError, DemScript, Grid, set_yaml_value
 from tfdem.engines import ScriptError, hard_sphere_laws, restitution_of_damping
@@ -197,6 +197,18 @@ def main():
     write(path, frame.format(100, 1.0) + frame.format(200, 9.0) + frame.format(200, 2.0) + frame.format(300, 3.0))
     frames = dump_frames(path)
     check("dump rewound at a repeated step", sorted(frames) == [100, 200, 300] and frames[200][1][0][1] == 2.0)
+
+    # The solver's time split summed over the segments that printed it (a killed segment did not)
+    timed = os.path.join(root, "timed")
+    line = ("TFDEM timing: DEM {} s, locate+map 0.5 s, forces 0.25 s, gas 3 s, statistics {} s, checkpoints 0.125 s; "
+            "(DEM + coupling + gas) / DEM = 3.2 on 1 rank(s)\n")
+    write(os.path.join(timed, "log.solver.1"), "ExecutionTime = 5 s\n" + line.format(1.5, 0.0625))
+    write(os.path.join(timed, "log.solver.2"), "ExecutionTime = 2 s\n")
+    write(os.path.join(timed, "log.solver.3"), line.format(2.5, 0.0625))
+    t = CaseRun("timed", timed).timing_seconds()
+    check("timing summed over the timed segments", t is not None and t["DEM"] == 4.0 and t["statistics"] == 0.125
+          and t["gas"] == 6.0 and t["segments"] == 3 and t["segments_timed"] == 2, str(t))
+    check("no timing line: None", CaseRun("none", os.path.join(root, "none")).timing_seconds() is None)
 
     # coupling.yaml edited in place: a value, a new key in a section, a new section
     case_dir = os.path.join(root, "case")

@@ -2,7 +2,8 @@
 report can be traced to a file and made again without the run folders (meshes, fields and
 particle files stay out of the repository):
 
-    run.json       the run's grid (uniform cells), cost and the map windows kept
+    run.json       the run's grid (uniform cells), cost (and the coupled solver's split of it,
+                   `TFDEM timing`, when its segments printed one) and the map windows kept
     pressure.csv   t, Delta p at 20 cm (every statistics interval)
     particles.csv  t, mean particle height, bulk coordination number, multicontact ratio,
                    particle count (TFM: t, the solids' mean height)
@@ -59,6 +60,8 @@ class Record:
                 "grid": {"counts": [grid.counts[0], grid.counts[1]], "origin": [grid.origin[0], grid.origin[1]],
                          "spacing": [grid.spacing[0], grid.spacing[1]]},
                 "windows": [list(w) for w in windows]}
+        if getattr(d, "timing", None):
+            meta["timing"] = d.timing
         if d.tfm:
             t, h = d.mean_height()
             heights = {"t": numpy.asarray(t), "mean_height": numpy.asarray(h)}

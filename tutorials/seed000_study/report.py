@@ -62,6 +62,7 @@ class RunData(BedOutputs):
         self.run, self.name = run, run.name
         self.wall = run.wall_seconds()
         self.cpu = run.cpu_seconds()
+        self.timing = None if run.tfm else run.timing_seconds()
 
 
 def averaged(t, y, start, end, batch):
@@ -115,6 +116,8 @@ class Report:
     # Numbers -----------------------------------------------------------------------------
     def run_numbers(self, d):
         out = {"wall_seconds": d.wall, "cpu_seconds": d.cpu}
+        if d.meta.get("timing"):
+            out["timing"] = d.meta["timing"]
         for (start, end) in self.windows:
             key = f"{start:g}-{end:g}"
             w = {"dp20": averaged(d.p_t, d.dp, start, end, self.batch)}
