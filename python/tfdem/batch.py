@@ -14,6 +14,7 @@ import sys
 import time
 
 import tfdem.run
+from tfdem import outputs
 from tfdem.case import Case
 from tfdem.run import environment
 
@@ -80,23 +81,19 @@ class CaseRun:
         sensitive than wall time to what else runs on the machine."""
         return self._last_over_segments(r"ExecutionTime = (\d+(?:\.\d*)?)")
 
-    TIMING_PARTS = ("DEM", "locate+map", "forces", "gas", "statistics", "checkpoints")
-
     def timing_seconds(self):
         """The coupled solver's own split of its time (the `TFDEM timing:` line each segment
         prints at its end), summed over the segments that printed one: {part: s}, with
         "segments" and "segments_timed"; None when none did (a TFM run, or no segment ended)."""
-        total, timed, logs = dict.fromkeys(self.TIMING_PARTS, 0.0), 0, self.logs()
-        pattern = r"TFDEM timing: " + r", ".join(rf"{re.escape(p)} (\S+) s" for p in self.TIMING_PARTS)
+        total, timed, logs = dict.fromkeys(outputs.TIMING_PARTS, 0.0), 0, self.logs()
         for log in logs:
-            found = None
-            with open(log, errors="replace") as f:
-                for line in f:
-                    found = re.search(pattern, line) or found
-            if found:
-                timed += 1
-                for part, value in zip(self.TIMING_PARTS, found.groups()):
-                    total[part] += float(value)
+            try:
+                split = outputs.solver_timing(log)
+            except outputs.OutputError:
+                continue
+            timed += 1
+            for part, seconds in split.items():
+                total[part] += seconds
         return dict(total, segments=len(logs), segments_timed=timed) if timed else None
 
     def _last_over_segments(self, pattern):
