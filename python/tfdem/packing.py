@@ -186,18 +186,33 @@ def to_mid_plane(path, depth):
         f.write("\n".join(out))
 
 
-def at_rest(path):
-    """Set every velocity and spin of a data file to zero (its Velocities section)."""
+def _set_velocities(path, velocity_of):
+    """Rewrite a data file's Velocities section: each line id vx vy vz wx wy wz gets
+    velocity_of(id), six numbers."""
     lines, out, section = open(path).read().split("\n"), [], ""
     for line in lines:
         words = line.split()
         if words and words[0][0].isalpha():
             section = words[0]
-        elif section == "Velocities" and len(words) >= 7 and words[0].isdigit():  # id vx vy vz wx wy wz
-            line = " ".join([words[0]] + ["0"] * 6 + words[7:])
+        elif section == "Velocities" and len(words) >= 7 and words[0].isdigit():
+            line = " ".join([words[0]] + [repr(float(v)) if v else "0" for v in velocity_of(int(words[0]))] + words[7:])
         out.append(line)
     with open(path, "w") as f:
         f.write("\n".join(out))
+
+
+def at_rest(path):
+    """Set every velocity and spin of a data file to zero (its Velocities section)."""
+    _set_velocities(path, lambda _: (0,) * 6)
+
+
+def jiggle(path, speed, seed):
+    """Give every particle of a data file a random velocity, each component normal with
+    standard deviation `speed` (m/s), spins zero: a perturbation far below a bed's own motion
+    that makes runs from one packing independent realizations once the bed's chaos has grown it
+    (another `seed`, another realization)."""
+    rng = numpy.random.default_rng(seed)
+    _set_velocities(path, lambda _: tuple(rng.normal(0.0, speed, 3)) + (0, 0, 0))
 
 
 def largest_overlap(path):

@@ -15,7 +15,7 @@ from tfdem.bubble import coloured_above, find_bubble
 from tfdem.case import Case, CaseError, DemScript, Grid, set_yaml_value
 from tfdem.engines import ScriptError, hard_sphere_laws, restitution_of_damping
 from tfdem.outputs import OutputError, dump_frames, fix_print, joined_series
-from tfdem.packing import at_rest, largest_overlap, packing_settings, script_stiffness, set_atom_types, to_mid_plane
+from tfdem.packing import at_rest, jiggle, largest_overlap, packing_settings, script_stiffness, set_atom_types, to_mid_plane
 from tfdem.physics import slab_solid_fraction
 from tfdem.run import RunError, command, decompose, mesh_cells
 from tfdem.stats import batch_means
@@ -171,6 +171,41 @@ fix wall_y0 all wall/gran model hooke/stiffness tangential history primitive typ
              if numpy.sum((cloud[i] - cloud[j]) ** 2) < (2 * r * 1.01) ** 2]
     check("contacts: numpy binning and the k-d tree find the brute-force pairs",
           binned.tolist() == brute and (saved is None or tree.tolist() == brute), f"{len(binned)} {len(tree)} {len(brute)}")
+
+
+def check_jiggle(root):
+    """Random velocities of a given spread on a data file of 4000 atoms at rest: each component's
+    sample standard deviation within 4 sigma of the asked 1e-6 m/s (a normal sample's standard
+    deviation has a standard error of sigma / sqrt(2 n), 1.1 % at n = 4000), means near zero
+    (standard error sigma / sqrt(n)), spins and positions untouched; the same seed gives the
+    same velocities, another seed others."""
+    n, speed = 4000, 1e-6
+    atoms = "".join(f"{i} 1 0.0025 2500 {0.001 * (i % 100)!r} {0.001 * (i // 100)!r} 0.0015 0 0 0\n"
+                    for i in range(1, n + 1))
+    text = (f"LIGGGHTS data file\n\n{n} atoms\n1 atom types\n\n0 0.1 xlo xhi\n0 0.05 ylo yhi\n0 0.003 zlo zhi\n\n"
+            f"Atoms\n\n{atoms}\nVelocities\n\n" + "".join(f"{i} 0 0 0 0 0 0\n" for i in range(1, n + 1)))
+
+    def velocities(seed):
+        path = os.path.join(root, f"jiggled_{seed}.data")
+        write(path, text)
+        jiggle(path, speed, seed)
+        lines = open(path).read().split("\n")
+        start = lines.index("Velocities") + 2
+        rows = [line.split() for line in lines[start:start + n]]
+        check("jiggled: atoms kept", lines[:lines.index("Velocities")] == text.split("\n")[:lines.index("Velocities")])
+        check("jiggled: ids in order, spins zero", [int(r[0]) for r in rows] == list(range(1, n + 1))
+              and all(r[4:7] == ["0", "0", "0"] for r in rows))
+        return numpy.array([[float(v) for v in r[1:4]] for r in rows])
+
+    v = velocities(7)
+    for axis in range(3):
+        spread = v[:, axis].std(ddof=1)
+        check(f"jiggled: component {axis}'s spread {speed:g} m/s within 4 sigma",
+              abs(spread / speed - 1) < 4 / math.sqrt(2 * n), f"{spread:.4g}")
+        check(f"jiggled: component {axis}'s mean zero within 4 sigma",
+              abs(v[:, axis].mean()) < 4 * speed / math.sqrt(n), f"{v[:, axis].mean():.3g}")
+    check("jiggled: the same seed, the same velocities", numpy.array_equal(v, velocities(7)))
+    check("jiggled: another seed, other velocities", not numpy.allclose(v, velocities(8)))
 
 
 def main():
@@ -345,6 +380,7 @@ def main():
     check("written at rest: every velocity and spin zero",
           lines[15].split() == ["1"] + ["0"] * 6 and lines[16].split() == ["2"] + ["0"] * 6, str(lines[15:17]))
     check("centres kept at rest", lines[10].split()[4:7] == ["0.01", "0.02", "0.002"], lines[10])
+    check_jiggle(case_dir)
     check("no overlap in the bed above: 0", largest_overlap(data) == 0.0, str(largest_overlap(data)))
     # By hand: a 4 mm and a 2 mm sphere 2.9 mm apart overlap by 0.1 mm, 5 % of the smaller
     # diameter; a third sphere 1 mm clear of both adds nothing
