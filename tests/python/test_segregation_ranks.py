@@ -1,0 +1,63 @@
+"""tutorials/bidisperse_segregation/ranks.py's comparison of N ranks with one rank on hand-made
+realizations, answers by hand:
+
+- Delta p 100, 102, 104 Pa on one rank and 101, 105, 103 on four: means 102 and 103, each
+  with the standard error 2 / sqrt(3) = 1.1547 (sample standard deviation 2 both), so the
+  difference is +1 +- 1.6330 Pa, +0.612 standard errors;
+- solids-fraction maps uniform at 0, 0.1, 0.2 on one rank and 0.05, 0.15, 0.25 on four: the
+  floors are the mean of |0.1|, |0.2|, |0.1| = 0.1333 each, the cross L1 the mean of the nine
+  |a - b| (0.05 five times, 0.15 three times, 0.25 once) = 0.95 / 9 = 0.10556;
+- maps 0 on one rank and 1 on four: of the C(6, 3) = 20 relabellings only the true split and
+  its mirror reach the observed statistic, so p = 2 / 20 = 0.1, the smallest 3 + 3 maps give;
+- the table names every metric and the rank count.
+"""
+import math
+import os
+import sys
+
+import numpy
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tutorials",
+                                "bidisperse_segregation"))
+import ranks  # noqa: E402
+
+failures = []
+
+
+def check(name, condition, detail=""):
+    print(("PASS " if condition else "FAIL ") + name + (f" {detail}" if detail else ""))
+    if not condition:
+        failures.append(name)
+
+
+def main():
+    one = {key: [100.0, 102.0, 104.0] for key in ranks.METRICS}
+    many = {key: [101.0, 105.0, 103.0] for key in ranks.METRICS}
+    c = ranks.compare(one, many)["dp_mean"]
+    check("one rank: 102 +- 1.1547", abs(c["one_rank"]["mean"] - 102) < 1e-12
+          and abs(c["one_rank"]["error"] - 2 / math.sqrt(3)) < 1e-12, str(c["one_rank"]))
+    check("four ranks: 103 +- 1.1547", abs(c["many_ranks"]["mean"] - 103) < 1e-12
+          and abs(c["many_ranks"]["error"] - 2 / math.sqrt(3)) < 1e-12, str(c["many_ranks"]))
+    check("difference +1 +- 1.6330", abs(c["difference"]["mean"] - 1) < 1e-12
+          and abs(c["difference"]["error"] - 1.6329932) < 1e-7, str(c["difference"]))
+    check("+0.612 standard errors", abs(c["in_errors"] - 0.6123724) < 1e-7, f"{c['in_errors']:.7f}")
+
+    def uniform(v):
+        return numpy.full((3, 2), v)
+    m = ranks.maps_comparison([uniform(v) for v in (0, 0.1, 0.2)], [uniform(v) for v in (0.05, 0.15, 0.25)])
+    check("floor within one rank 0.1333", abs(m["floor_one_rank"] - 0.4 / 3) < 1e-12, str(m))
+    check("floor within four ranks 0.1333", abs(m["floor_many_ranks"] - 0.4 / 3) < 1e-12, str(m))
+    check("cross L1 0.10556", abs(m["cross"] - 0.95 / 9) < 1e-12, str(m))
+    apart = ranks.maps_comparison([uniform(0)] * 3, [uniform(1)] * 3)
+    check("maps apart: p = 2/20", abs(apart["p"] - 0.1) < 1e-12 and abs(apart["cross"] - 1) < 1e-12, str(apart))
+
+    result = {"ranks": 4, "realizations": 3, "window": [0.3, 1.0], "metrics": ranks.compare(one, many), "maps": m}
+    text = ranks.table(result)
+    check("table: a row per metric, 4 ranks named",
+          all(label in text for label, _, _ in ranks.METRICS.values()) and "| 4 ranks |" in text, text)
+    print("all passed" if not failures else f"{len(failures)} failed: {failures}")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
