@@ -164,6 +164,21 @@ def check_bad_input(checks):
     yaml.safe_dump(bad_key, open(path, "w"))
     code, output = study(["run"] + args)
     checks.true("a misspelt run key", code == 2 and "unknown key 'refine' (did you mean 'refine_y'?)" in output)
+    realized = dict(definition, runs={"uniform_m1": {"bed": "uniform"}, "uniform_m2": {"bed": "uniform"}},
+                    realizations={"runs": ["uniform_m1", "uniform_m2"], "seeds": [15485863], "lattice": ["uniform_m1"]})
+    yaml.safe_dump(realized, open(path, "w"))
+    code, output = study(["status", "--root", root, "--study", path])
+    listed = [line.split()[0] for line in output.splitlines() if line.strip()]
+    checks.true("realizations.lattice: only its runs run from the lattice too",
+                code == 0 and listed == ["uniform_m1", "uniform_m1_r1", "uniform_m2_r1"], str(listed))
+    code, output = study(["run", "--runs", "uniform_m2"] + args[2:])
+    checks.true("a run made only as realizations is refused by name, with the fix",
+                code == 2 and "uniform_m2: run only as realizations (uniform_m2_r1" in output
+                and "realizations.lattice" in output, output[-300:])
+    yaml.safe_dump(dict(realized, realizations=dict(realized["realizations"], lattice=["uniform_m3"])), open(path, "w"))
+    code, output = study(["status", "--root", root, "--study", path])
+    checks.true("a misspelt lattice run", code == 2 and "realizations.lattice: no run 'uniform_m3' (did you mean" in output,
+                output[-300:])
 
 
 def alive(pid):

@@ -8,8 +8,8 @@ worked out by hand or from a closed form (no simulation):
   quantiles against the tables;
 - tfdem.bed: Delta p at 20 cm from the row probes (also through BedOutputs on a hand-made
   case), the mirror mean, pairwise and cross L1, the noise floor, the permutation test;
-- the study's record (written and read back, a missing file named) and report.py's
-  ratio_numbers, grid_l1 and window_l1 on hand-made records;
+- the study's record (written and read back, a missing file or window named) and report.py's
+  ratio_numbers on hand-made records;
 - headline.py's Fig. 8 numbers (axis profile, corners, mirror L1), its pairs table and the
   README blocks it replaces, by hand; and the study README's generated tables are what
   report.py makes from the committed records (results/), cell for cell.
@@ -31,6 +31,7 @@ from tfdem.stats import (autocorrelation, blocking_curve, chi_square_quantile, d
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tutorials", "seed000_study"))
 import headline  # noqa: E402
 import report  # noqa: E402
+import study as study_definition  # noqa: E402
 from record import Record, RecordError  # noqa: E402
 
 STUDY = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tutorials", "seed000_study")
@@ -294,22 +295,10 @@ def check_ratio_numbers():
     check("ratio_numbers: largest in the bottom corners", close(r["largest_in_corners"], 20))
 
 
-def check_l1_functions():
-    # coarse 2 x 3 cells of 20 cm (rows at 10, 30, 50 cm: two below 45 cm); fine 2 x 6 of 10 cm
-    coarse = [[0.5, 0.5], [0.3, 0.3], [0.0, 0.0]]
-    fine = [[0.6, 0.4], [0.6, 0.4], [0.3, 0.1], [0.1, 0.3], [1.0, 1.0], [1.0, 1.0]]
-    r = report.Report.__new__(report.Report)
-    r.records = {"c": hand_record("c", (2, 3), (0.1, 0.2), {"0-1": {"solids": coarse},
-                                                             "1-2": {"solids": [[0.2, 0.4], [0.3, 0.3], [5, 5]]}}),
-                 "f": hand_record("f", (2, 6), (0.1, 0.1), {"0-1": {"solids": fine}})}
-    # fine onto coarse: [0.6, 0.4], [0.2, 0.2]; |diff| 0.1 0.1 0.1 0.1; mirror-averaged 0 0 0.1 0.1
-    check("grid_l1: the fine map on the coarse cells, bottom 45 cm", close(r.grid_l1("c", "f", 0, 1), 0.1))
-    check("grid_l1 symmetric: of the mirror means", close(r.grid_l1("c", "f", 0, 1, symmetric=True), 0.05))
-    # windows: [0.5 0.5], [0.3 0.3] against [0.2 0.4], [0.3 0.3]: |diff| 0.3 0.1 0 0; mirrored 0.2 0.2 0 0
-    check("window_l1: two windows of one run", close(r.window_l1("c", (0, 1), (1, 2)), 0.1))
-    check("window_l1 symmetric", close(r.window_l1("c", (0, 1), (1, 2), symmetric=True), 0.1))
+def check_missing_window_named():
+    r = hand_record("c", (2, 3), (0.1, 0.2), {"0-1": {"solids": [[0.5, 0.5], [0.3, 0.3], [0.0, 0.0]]}})
     try:
-        r.window_l1("c", (0, 1), (2, 3))
+        r.window_map("solids", 2, 3)
         check("a window the record does not keep is named", False)
     except RecordError as e:
         check("a window the record does not keep is named", "c: no solids map over 2-3 s" in str(e), str(e))
@@ -377,14 +366,13 @@ def block(text, name):
 def check_readme_is_the_report(root):
     """The study README's generated tables against a report made now from the committed records
     (a copy of results/, no run folder): a hand edit or a stale table fails."""
-    import yaml
     results = os.path.join(root, "results_copy")
     shutil.copytree(os.path.join(STUDY, "results"), results)
     readme = os.path.join(root, "README.md")
     shutil.copy(os.path.join(STUDY, "README.md"), readme)
-    with open(os.path.join(STUDY, "study.yaml")) as f:
-        study = yaml.safe_load(f)
-    runs = [type("Run", (), {"name": n, "done": lambda self: False})() for n in _study_run_names(study)]
+    study = study_definition.load_study(os.path.join(STUDY, "study.yaml"))
+    runs = [type("Run", (), {"name": r.name, "done": lambda self: False})()
+            for r in study_definition.selected_runs(study, [], root)]
     report.write_report(study, runs, study["end_time"], os.path.join(root, "report"), results, readme)
     with open(readme) as f:
         made = f.read()
@@ -392,14 +380,6 @@ def check_readme_is_the_report(root):
         committed = f.read()
     for name in (headline.HEADLINE, headline.PAIRS, headline.REPLICATES):
         check(f"study README: {name} is the report's from results/", block(made, name) == block(committed, name))
-
-
-def _study_run_names(study):
-    names = list(study["runs"])
-    seeds = (study.get("realizations") or {}).get("seeds") or []
-    for config in (study.get("realizations") or {}).get("runs") or []:
-        names += [f"{config}_r{k}" for k in range(1, len(seeds) + 1)]
-    return names
 
 
 def main():
@@ -415,7 +395,7 @@ def main():
     check_maps()
     check_bed_outputs(root)
     check_ratio_numbers()
-    check_l1_functions()
+    check_missing_window_named()
     check_record(root)
     print(f"{'FAILED: ' + ', '.join(failures) if failures else 'all passed'}")
     sys.exit(1 if failures else 0)

@@ -114,6 +114,12 @@ class Record:
         return cls(name, meta, tuple(pressure), heights, _read_maps(os.path.join(folder, MAPS), name, meta))
 
     # What the report asks ---------------------------------------------------------------------
+    @property
+    def extent(self):
+        """(left, right, bottom, top) of the grid in metres, as matplotlib's imshow takes it."""
+        (x0, y0), (dx, dy) = self.meta["grid"]["origin"], self.meta["grid"]["spacing"]
+        return x0, x0 + self.shape[1] * dx, y0, y0 + self.shape[0] * dy
+
     def mean_height(self):
         """(t, mean particle height in m; TFM: the solids' centroid height)."""
         return self.particles["t"], self.particles["mean_height"]

@@ -4,8 +4,10 @@ results/numbers.json and results/README.md, which are kept in the repository).
 
 Every number comes from a run's record (record.py: its series and window-averaged maps,
 results/<run>/), written from the run folder when the run finished and read back; a run
-without a folder but with a record (a clone without runs/) still gives its numbers, only the
-figures need the run folders. Every time average comes with its standard error from batch
+without a folder but with a record (a clone without runs/) still gives its numbers and the
+figures of series and time-averaged maps; only the figures of particles or of an instant (Figs.
+6, 7, 8, 10, 12) need the run folders. A configuration with realizations is drawn from its
+first one (its maps in Fig. 13: their mean). Every time average comes with its standard error from batch
 means (study.yaml `batch`); averages cover seed 000's window (5-10 s) and 5-20 s. The maps
 are time averages of the fields the runs sampled at every cell centre (study.yaml
 `field_interval`). The realizations of study.yaml add ensemble errors, blocking curves,
@@ -14,6 +16,7 @@ autocorrelation times and noise floors (replicates.py).
 import json
 import math
 import os
+import re
 import shutil
 
 import matplotlib
@@ -25,7 +28,7 @@ import numpy  # noqa: E402
 from record import Record  # noqa: E402
 from headline import HEADLINE, PAIRS, REPLICATES, Headline, pair_lines, replace_block  # noqa: E402
 from replicates import Replicates  # noqa: E402
-from tfdem.bed import BedOutputs, l1_difference, mirror_mean, to_grid  # noqa: E402
+from tfdem.bed import BedOutputs  # noqa: E402
 from tfdem.outputs import vtk_particles  # noqa: E402
 from tfdem.stats import batch_means, dominant_frequency, window  # noqa: E402
 
@@ -91,7 +94,7 @@ class Report:
             folder = os.path.join(results, r.name)
             if r.done():
                 self.data[r.name] = RunData(r)
-                Record.from_outputs(self.data[r.name], self.map_windows()).write(folder)
+                Record.from_outputs(self.data[r.name], self.windows).write(folder)
             if r.done() or os.path.isfile(os.path.join(folder, "run.json")):
                 self.records[r.name] = Record.read(folder, r.name)
             else:
@@ -99,19 +102,6 @@ class Report:
         self.numbers = {"windows": self.windows, "batch": self.batch, "snapshot": self.snapshot, "runs": {},
                         "from_records_only": sorted(set(self.records) - set(self.data))}
         os.makedirs(out, exist_ok=True)
-
-    def map_windows(self):
-        """The windows whose averaged maps the numbers use: the study's, and the two halves of
-        the last (the one-run noise floor of window_l1)."""
-        start, end = self.windows[-1]
-        return list(self.windows) + [(start, 0.5 * (start + end)), (0.5 * (start + end), end)]
-
-    def has(self, *names):
-        return all(n in self.records for n in names)
-
-    def has_data(self, *names):
-        """The run folders are here (the figures need them)."""
-        return all(n in self.data for n in names)
 
     # Numbers -----------------------------------------------------------------------------
     def run_numbers(self, d):
@@ -177,7 +167,7 @@ class Report:
     def theta_figure(self):
         """Granular temperature per row and per cell, TF-DEM (method 1) and TFM, each bed."""
         theta = self.numbers.get("granular_temperature", {})
-        beds = [b for b in ("jet", "uniform") if b in theta and self.has_data(f"{b}_m1", f"{b}_tfm")]
+        beds = [b for b in ("jet", "uniform") if b in theta]
         if not beds:
             return
         start, end = self.windows[0]
@@ -194,37 +184,13 @@ class Report:
             for j, n in enumerate(runs):
                 r = self.records[n]
                 t = numpy.log10(numpy.maximum(r.window_map("theta", start, end), 1e-6))
-                image = self.map_axes(axes[k, 1 + j], self.data[n], t, f"{n}: log10 Θ, {start:g}-{end:g} s",
+                image = self.map_axes(axes[k, 1 + j], r, t, f"{n}: log10 Θ, {start:g}-{end:g} s",
                                       vmin=-5, vmax=-1, cmap="magma")
             fig.colorbar(image, ax=list(axes[k, 1:]), shrink=0.8, label="log10 Θ (m²/s²)")
         fig.suptitle("Granular temperature: TF-DEM's particles (seed 000 eq. 6) and the TFM's Theta", fontsize=9)
         fig.savefig(os.path.join(self.out, "fig_granular_temperature.png"), dpi=110)
         plt.close(fig)
         self.figures.append("fig_granular_temperature.png")
-
-    def grid_l1(self, coarse, fine, start, end, symmetric=False):
-        """Mean |difference| of the time-averaged solids fraction of two grids over the
-        bottom 45 cm, the fine map averaged onto the coarse cells; `symmetric`: of the maps
-        averaged with their mirror images (which side a jet leans to left out)."""
-        a = self.records[coarse].window_map("solids", start, end)
-        b = to_grid(self.records[fine].window_map("solids", start, end), a.shape)
-        if symmetric:
-            a, b = mirror_mean(a), mirror_mean(b)
-        return l1_difference(a, b, rows=self._rows_below(self.records[coarse], 0.45))
-
-    def window_l1(self, run, first, second, symmetric=False):
-        """Mean |difference| of one run's time-averaged solids fraction over two windows,
-        bottom 45 cm: the statistical noise of such an average, the floor under grid_l1."""
-        d = self.records[run]
-        a, b = d.window_map("solids", *first), d.window_map("solids", *second)
-        if symmetric:
-            a, b = mirror_mean(a), mirror_mean(b)
-        return l1_difference(a, b, rows=self._rows_below(d, 0.45))
-
-    @staticmethod
-    def _rows_below(d, height):
-        """Number of cell rows whose centres lie below `height` (m)."""
-        return int((d.y[:, 0] < height).sum())
 
     # Figures -------------------------------------------------------------------------------
     def save(self, fig, name):
@@ -241,58 +207,50 @@ class Report:
         ax.set_title(title, fontsize=9)
         self.save(fig, filename)
 
-    def map_axes(self, ax, d, values, title, vmin=0, vmax=0.65, cmap="viridis", top=0.45):
-        g = d.grid
-        extent = (g.origin[0], g.upper(0), g.origin[1], g.upper(1))
+    def map_axes(self, ax, r, values, title, vmin=0, vmax=0.65, cmap="viridis", top=0.45):
+        """A map of `values` on record r's cells, the bottom `top` metres."""
+        extent = r.extent
         image = ax.imshow(values, origin="lower", extent=extent, vmin=vmin, vmax=vmax, cmap=cmap,
                           interpolation="nearest", aspect="equal")
-        ax.set_ylim(g.origin[1], min(top, g.upper(1)))
+        ax.set_ylim(extent[2], min(top, extent[3]))
         ax.set_title(title, fontsize=8)
         ax.set_xticks([0, 0.05, 0.1, 0.15])
         ax.tick_params(labelsize=7)
         return image
 
+    def realizations(self, config):
+        """The records of a configuration's realizations (<config>_r1, _r2, ...), in order."""
+        pattern = re.compile(re.escape(config) + r"_r(\d+)$")
+        found = [(int(m.group(1)), n) for n in self.records for m in [pattern.match(n)] if m]
+        return [n for _, n in sorted(found)]
+
+    def shown(self, *configs):
+        """The runs a figure draws for these configurations, as far as they have records: a
+        configuration's first realization when it has realizations, else its single run."""
+        names = [(self.realizations(c) or [c])[0] for c in configs]
+        return [n for n in names if n in self.records]
+
     def fig3(self):
-        names = [n for n in ("jet_m1", "jet_m2", "jet_tfm", "jet_tfm_phase_pressure") if n in self.data]
+        names = self.shown("jet_m1", "jet_m2", "jet_tfm", "jet_tfm_phase_pressure")
         if not names:
             return
         start, end = self.windows[0]
         fig, ax = plt.subplots(figsize=(8, 3.5))
         for n in names:
-            d = self.data[n]
-            s = averaged(d.p_t, d.dp, start, end, self.batch)
-            ax.plot(d.p_t, d.dp, lw=0.6, label=f"{n}: {s['mean']:.0f} ± {s['std']:.0f} Pa (mean ± std, {start:g}-{end:g} s)")
+            r = self.records[n]
+            s = averaged(r.p_t, r.dp, start, end, self.batch)
+            ax.plot(r.p_t, r.dp, lw=0.6, label=f"{n}: {s['mean']:.0f} ± {s['std']:.0f} Pa (mean ± std, {start:g}-{end:g} s)")
         self.save_series(fig, ax, "Δp at 20 cm (Pa)",
                          "Fig. 3: pressure drop between the bottom cells and 20 cm above, central-jet bed",
                          "fig3_jet_pressure_drop.png")
 
-    def fig4(self):
-        pairs = [(c, f) for c, f in (("jet_m1", "jet_fine_m1"), ("jet_cube_m1", "jet_fine_cube_m1"),
-                                     ("jet_cube2_m1", "jet_fine_cube2_m1")) if self.has_data(c, f)]
-        if not pairs:
-            return
-        start, end = self.windows[0]
-        fig, axes = plt.subplots(1, 2 * len(pairs), figsize=(3 * len(pairs) * 2, 5))
-        axes = numpy.atleast_1d(axes)
-        for k, (c, f) in enumerate(pairs):
-            l1 = self.grid_l1(c, f, start, end)
-            for j, n in enumerate((c, f)):
-                d = self.data[n]
-                image = self.map_axes(axes[2 * k + j], d, d.field_average(d.solids, start, end),
-                                      f"{n}\n(L1 coarse-fine {l1:.3f})")
-        fig.colorbar(image, ax=list(axes), shrink=0.8, label=f"solids fraction, {start:g}-{end:g} s")
-        fig.suptitle("Fig. 4: time-averaged solids fraction, coarse (1 x 2 cm) and fine (1 x 1 cm) grids", fontsize=9)
-        fig.savefig(os.path.join(self.out, "fig4_jet_grids.png"), dpi=110)
-        plt.close(fig)
-        self.figures.append("fig4_jet_grids.png")
-
     def series_figure(self, key, ylabel, title, filename, paper_lines):
-        names = [n for n in ("jet_m1", "jet_m2", "uniform_m1", "uniform_m2") if n in self.data]
+        names = self.shown("jet_m1", "jet_m2", "uniform_m1", "uniform_m2")
         if not names:
             return
         fig, ax = plt.subplots(figsize=(8, 3.5))
         for n in names:
-            p = self.data[n].particles
+            p = self.records[n].particles
             ax.plot(p["t"], p[key], lw=0.6, label=n)
         for value, label in paper_lines:
             ax.axhline(value, ls="--", lw=0.8, color="k")
@@ -338,7 +296,7 @@ class Report:
                                                       (drag, "drag |Σ f_d|/(m g)", None),
                                                       (ratio, "contact / drag (-1: no drag)", 20))):
                 top = vmax or max(float(numpy.percentile(values, 99)), 1e-9)
-                image = self.map_axes(axes[i, j], d, values, f"{what}\n{label}", vmin=-1 if vmax else 0,
+                image = self.map_axes(axes[i, j], self.records[name], values, f"{what}\n{label}", vmin=-1 if vmax else 0,
                                       vmax=top, cmap="jet")
                 fig.colorbar(image, ax=axes[i, j], shrink=0.7)
         fig.suptitle(title, fontsize=9)
@@ -354,7 +312,7 @@ class Report:
                                            ("%g-%g s" % (start, end), lambda d: d.field_average(d.solids, start, end)))):
             for j, n in enumerate(names):
                 d = self.data[n]
-                image = self.map_axes(axes[len(names) * k + j], d, pick(d), f"{n}, {label}")
+                image = self.map_axes(axes[len(names) * k + j], self.records[n], pick(d), f"{n}, {label}")
         fig.colorbar(image, ax=list(axes), shrink=0.8, label="solids fraction")
         fig.suptitle("Fig. 8: solids fraction, central-jet bed, TF-DEM (method 1) and TFM", fontsize=9)
         fig.savefig(os.path.join(self.out, "fig8_jet_dem_vs_tfm.png"), dpi=110)
@@ -362,13 +320,13 @@ class Report:
         self.figures.append("fig8_jet_dem_vs_tfm.png")
 
     def fig9(self):
-        names = [n for n in ("uniform_m1", "uniform_m2", "uniform_m2_interpolated", "uniform_tfm",
-                             "uniform_tfm_phase_pressure") if n in self.data]
+        names = self.shown("uniform_m1", "uniform_m2", "uniform_m2_interpolated", "uniform_tfm",
+                           "uniform_tfm_phase_pressure")
         if not names:
             return
         fig, ax = plt.subplots(figsize=(8, 3.5))
         for n in names:
-            t, h = self.data[n].mean_height()
+            t, h = self.records[n].mean_height()
             ax.plot(t, 100 * h, lw=0.6, label=n)
         for key, label in (("mean_height_m1", "paper, method 1"), ("mean_height_m2", "paper, method 2"),
                            ("mean_height_tfm", "paper, TFM"), ("mean_height_experiment", "experiment")):
@@ -379,15 +337,18 @@ class Report:
                          "fig9_uniform_mean_height.png")
 
     def fig13(self):
-        names = [n for n in ("uniform_m1", "uniform_m2", "uniform_m2_interpolated", "uniform_tfm",
-                             "uniform_tfm_phase_pressure") if n in self.data]
-        if len(names) < 2:
+        """The uniform bed's time-averaged solids fraction per configuration: the mean of its
+        realizations' maps (or its one run's)."""
+        configs = [c for c in ("uniform_m1", "uniform_m2", "uniform_m2_interpolated", "uniform_tfm",
+                               "uniform_tfm_phase_pressure") if self.realizations(c) or c in self.records]
+        if len(configs) < 2:
             return
         start, end = self.windows[0]
-        fig, axes = plt.subplots(1, len(names), figsize=(2.6 * len(names), 5))
-        for ax, n in zip(axes, names):
-            d = self.data[n]
-            image = self.map_axes(ax, d, d.field_average(d.solids, start, end), n, top=0.3)
+        fig, axes = plt.subplots(1, len(configs), figsize=(2.6 * len(configs), 5))
+        for ax, c in zip(axes, configs):
+            names = self.realizations(c) or [c]
+            mean = numpy.mean([self.records[n].window_map("solids", start, end) for n in names], axis=0)
+            image = self.map_axes(ax, self.records[names[0]], mean, f"{c}\n(n = {len(names)})", top=0.3)
         fig.colorbar(image, ax=list(axes), shrink=0.8, label=f"solids fraction, {start:g}-{end:g} s")
         fig.suptitle("Fig. 13: time-averaged solids fraction, uniform-inflow bed, method 1 and method 2", fontsize=9)
         fig.savefig(os.path.join(self.out, "fig13_uniform_methods.png"), dpi=110)
@@ -399,21 +360,8 @@ class Report:
         self.figures = []
         for name, d in self.records.items():
             self.numbers["runs"][name] = self.run_numbers(d)
-        start, end = self.windows[1]
-        halves = ((start, 0.5 * (start + end)), (0.5 * (start + end), end))
-        for c, f in (("jet_m1", "jet_fine_m1"), ("jet_m2", "jet_fine_m2"), ("jet_cube_m1", "jet_fine_cube_m1"),
-                     ("jet_cube2_m1", "jet_fine_cube2_m1")):
-            if self.has(c, f):
-                values = {}
-                for symmetric, tag in ((False, ""), (True, " symmetric")):
-                    for a, b in self.windows:
-                        values[f"{a:g}-{b:g}{tag}"] = self.grid_l1(c, f, a, b, symmetric)
-                    values[f"noise{tag}"] = max(self.window_l1(c, *halves, symmetric),
-                                                self.window_l1(f, *halves, symmetric))
-                self.numbers.setdefault("grid_l1", {})[f"{c} vs {f}"] = values
         self.numbers["granular_temperature"] = self.theta_numbers()
         self.fig3()
-        self.fig4()
         self.series_figure("bulk_coordination", "bulk coordination number",
                            "Fig. 5: bulk coordination number (mean N_c)", "fig5_coordination.png",
                            [(1.2, "paper: jet ~1.2"), (0.5, "paper: uniform ~0.5")])
@@ -457,8 +405,6 @@ class Report:
         runs = self.numbers["runs"]
 
         def stat(run, key, scale=1.0):
-            if run not in runs:
-                return "-", "-"
             return fmt(runs[run][w0].get(key), scale), fmt(runs[run][w1].get(key), scale)
 
         lines = [f"# Seed 000 study: report ({self.end_time:g} s runs)", "",
@@ -468,9 +414,12 @@ class Report:
         if self.missing:
             lines += [f"Runs not finished (left out): {', '.join(self.missing)}", ""]
         if self.numbers["from_records_only"]:
-            lines += ["From their records only (no run folder, so in no figure): "
+            lines += ["From their records only (no run folder, so in none of the figures of particles or of an "
+                      "instant: Figs. 6, 7, 8, 10, 12): "
                       f"{', '.join(self.numbers['from_records_only'])}", ""]
-        lines += ["## Seed 000's results beside ours", ""] + headline_lines + ["", "## Every run", ""]
+        lines += ["## Seed 000's results beside ours", ""] + headline_lines
+        lines += ["", "## The single runs", "", "The runs made once (the lattice-packed and TFM runs); the realizations' "
+                  "ensembles are under Replicates.", ""]
         lines += ["| quantity | run | paper | ours " + w0 + " s | ours " + w1 + " s |", "|---|---|---|---|---|"]
         rows = [("Δp at 20 cm (Pa), jet", r, "figure only (Fig. 3)", "dp20", 1.0)
                 for r in ("jet_m1", "jet_m2", "jet_fine_m1", "jet_tfm", "jet_tfm_phase_pressure")]
@@ -486,7 +435,7 @@ class Report:
                        ("uniform_tfm_phase_pressure", "mean_height_tfm")):
             rows.append(("mean particle height (cm), uniform", r,
                          f"{PAPER[key]} (experiment {PAPER['mean_height_experiment']})", "mean_height", 100.0))
-        for label, run, paper, key, scale in rows:
+        for label, run, paper, key, scale in [row for row in rows if row[1] in runs]:
             a, b = stat(run, key, scale)
             lines.append(f"| {label} | {run} | {paper} | {a} | {b} |")
         lines += ["", "Contact / drag force ratio of the time-averaged maps over bed cells (solids fraction > 0.1):", "",
@@ -497,19 +446,6 @@ class Report:
                 r = runs[run][w0]["force_ratio"]
                 lines.append(f"| {run} | {paper} | {r['share_2_to_10']:.2f} | {r['median']:.3g} | {r['largest']:.3g} | "
                              f"{r['largest_in_corners']:.3g} |")
-        if "grid_l1" in self.numbers:
-            start, end = self.windows[1]
-            middle = 0.5 * (start + end)
-            lines += ["", "Grid dependence (Fig. 4): mean |coarse - fine| of the time-averaged solids fraction, "
-                          "bottom 45 cm; the noise floor is the same measure between two halves of one run "
-                          f"({start:g}-{middle:g} and {middle:g}-{end:g} s, the larger of the two runs); "
-                          "'symmetric': of the maps averaged with their mirror images, which leaves out the side "
-                          "a jet leans to:", "",
-                      f"| pair | {w0} s | {w1} s | noise floor | {w0} s symmetric | {w1} s symmetric | "
-                      "noise floor symmetric |", "|---|---|---|---|---|---|---|"]
-            for pair, v in self.numbers["grid_l1"].items():
-                lines.append(f"| {pair} | {v[w0]:.4f} | {v[w1]:.4f} | {v['noise']:.4f} | {v[w0 + ' symmetric']:.4f} | "
-                             f"{v[w1 + ' symmetric']:.4f} | {v['noise symmetric']:.4f} |")
         if self.numbers["granular_temperature"]:
             lines += ["", "Granular temperature Θ (m²/s²; seed 000 eq. 6 from the particles, the TFM's transported "
                           f"Theta) over {w0} s, solids-weighted over the bed's cells (time-averaged solids fraction "

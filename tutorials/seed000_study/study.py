@@ -84,8 +84,9 @@ def load_study(path=os.path.join(STUDY_DIR, "study.yaml")):
 
 
 def with_realizations(study, path):
-    """The runs, and each one study.yaml's realizations list again once per seed, as
-    <run>_r<k> from a poured packing of that seed."""
+    """The runs, and each one of study.yaml's realizations list again once per seed, as
+    <run>_r<k> from a poured packing of that seed (realizations.lattice checked: see
+    realizations_only)."""
     spec = study.get("realizations")
     if not spec:
         return study["runs"]
@@ -94,11 +95,18 @@ def with_realizations(study, path):
     if not seeds or any(not isinstance(s, int) or s <= 10000 for s in seeds):
         raise StudyError(f"{path}: realizations.seeds must list primes above 10000 (LIGGGHTS' insertion seeds), "
                          f"got {seeds!r}")
-    for name in spec.get("runs") or []:
-        if name not in study["runs"]:
-            near = difflib.get_close_matches(name, list(study["runs"]), 1)
-            raise StudyError(f"{path}: realizations.runs: no run '{name}'" + (f" (did you mean '{near[0]}'?)" if near
-                                                                               else ""))
+    realized, lattice = spec.get("runs") or [], spec.get("lattice") or []
+    for key, names in (("runs", realized), ("lattice", lattice)):
+        for name in names:
+            if name not in study["runs"]:
+                near = difflib.get_close_matches(name, list(study["runs"]), 1)
+                raise StudyError(f"{path}: realizations.{key}: no run '{name}'"
+                                 + (f" (did you mean '{near[0]}'?)" if near else ""))
+    strays = [name for name in lattice if name not in realized]
+    if strays:
+        raise StudyError(f"{path}: realizations.lattice: {', '.join(strays)} not in realizations.runs (a run "
+                         "without realizations runs from the lattice packing anyway)")
+    for name in realized:
         for k, seed in enumerate(seeds, 1):
             runs[f"{name}_r{k}"] = dict(study["runs"][name], seed=seed)
     return runs
@@ -235,12 +243,26 @@ def whole_gas_step(target, dem_step, interval):
     return dem_step * max(n for n in range(1, most + 1) if steps_per_interval % n == 0)
 
 
+def realizations_only(study):
+    """The runs that have realizations and are not run themselves (their entries stay, as the
+    configurations the report groups the realizations by): all but those realizations.lattice
+    names, which also run once from the template's lattice packing."""
+    spec = study.get("realizations") or {}
+    return set(spec.get("runs") or []) - set(spec.get("lattice") or [])
+
+
 def selected_runs(study, names, root):
-    runs = [Run(name, spec, study, root) for name, spec in study["runs"].items()]
+    runnable = {name: spec for name, spec in study["runs"].items() if name not in realizations_only(study)}
+    runs = [Run(name, spec, study, root) for name, spec in runnable.items()]
     if names:
         unknown = [n for n in names if n not in study["runs"]]
         if unknown:
-            raise StudyError(f"unknown run(s) {', '.join(unknown)}; study.yaml has: {', '.join(study['runs'])}")
+            raise StudyError(f"unknown run(s) {', '.join(unknown)}; study.yaml has: {', '.join(runnable)}")
+        realized = [n for n in names if n not in runnable]
+        if realized:
+            raise StudyError(f"{', '.join(realized)}: run only as realizations ({realized[0]}_r1, {realized[0]}_r2, "
+                             "...); list it under realizations.lattice in study.yaml to run it once from the "
+                             "lattice packing too")
         runs = [r for r in runs if r.name in names]
     # the longest first, so the two cores finish together: the jet bed's (fine grid first, its
     # TFM as long as its coarse TF-DEM), then the uniform bed's (its TFM the shortest)
