@@ -5,10 +5,11 @@ results/numbers.json and results/README.md, which are kept in the repository).
 Every number comes from a run's record (record.py: its series and window-averaged maps,
 results/<run>/), written from the run folder when the run finished and read back; a run
 without a folder but with a record (a clone without runs/) still gives its numbers and the
-figures of series and time-averaged maps; only the figures of particles or of an instant (Figs.
-6, 7, 8, 10, 12) need the run folders. A configuration with realizations is drawn from its
-first one (its maps in Fig. 13: their mean). Every time average comes with its standard error from batch
-means (study.yaml `batch`); averages cover seed 000's window (5-10 s) and 5-20 s. The maps
+figures of series and time-averaged maps; only the figures of particles or of an instant
+(Figs. 6, 7, 8, 10, 12) need the run folders. A configuration with realizations is drawn from
+its first one (its maps in Fig. 13: their mean). Every time average comes with its standard
+error from batch means (study.yaml `batch`); averages cover seed 000's window (5-10 s) and
+5-20 s. The maps
 are time averages of the fields the runs sampled at every cell centre (study.yaml
 `field_interval`). The realizations of study.yaml add ensemble errors, blocking curves,
 autocorrelation times and noise floors (replicates.py).
