@@ -9,7 +9,11 @@ realizations, answers by hand:
   |a - b| (0.05 five times, 0.15 three times, 0.25 once) = 0.95 / 9 = 0.10556;
 - maps 0 on one rank and 1 on four: of the C(6, 3) = 20 relabellings only the true split and
   its mirror reach the observed statistic, so p = 2 / 20 = 0.1, the smallest 3 + 3 maps give;
-- the table names every metric and the rank count.
+- one realization on four ranks, 107 Pa: its error is the one-rank spread 2, so the difference
+  is +5 +- sqrt(4/3 + 4) = 2.3094 Pa, +2.165 standard errors; its map uniform at 0.3 against
+  0, 0.1, 0.2 gives the cross L1 (0.3 + 0.2 + 0.1) / 3 = 0.2, and neither a floor within four
+  ranks nor a permutation test (one map);
+- the table names every metric and the rank count, and says when one map stands alone.
 """
 import math
 import os
@@ -51,10 +55,27 @@ def main():
     apart = ranks.maps_comparison([uniform(0)] * 3, [uniform(1)] * 3)
     check("maps apart: p = 2/20", abs(apart["p"] - 0.1) < 1e-12 and abs(apart["cross"] - 1) < 1e-12, str(apart))
 
-    result = {"ranks": 4, "realizations": 3, "window": [0.3, 1.0], "metrics": ranks.compare(one, many), "maps": m}
+    result = {"ranks": 4, "realizations": 3, "many_realizations": 3, "window": [0.3, 1.0],
+              "metrics": ranks.compare(one, many), "maps": m}
     text = ranks.table(result)
     check("table: a row per metric, 4 ranks named",
           all(label in text for label, _, _ in ranks.METRICS.values()) and "| 4 ranks |" in text, text)
+
+    single = ranks.compare(one, {key: [107.0] for key in ranks.METRICS})["dp_mean"]
+    check("one realization on four ranks: +-2, the one-rank spread",
+          single["many_ranks"]["n"] == 1 and abs(single["many_ranks"]["error"] - 2) < 1e-12, str(single["many_ranks"]))
+    check("one realization: difference +5 +- 2.3094",
+          abs(single["difference"]["mean"] - 5) < 1e-12
+          and abs(single["difference"]["error"] - math.sqrt(16 / 3)) < 1e-12, str(single["difference"]))
+    check("one realization: +2.165 standard errors", abs(single["in_errors"] - 5 / math.sqrt(16 / 3)) < 1e-12)
+    lone = ranks.maps_comparison([uniform(v) for v in (0, 0.1, 0.2)], [uniform(0.3)])
+    check("one map on four ranks: cross 0.2, no floor within, no test",
+          abs(lone["cross"] - 0.2) < 1e-12 and lone["floor_many_ranks"] is None and lone["p"] is None, str(lone))
+    text = ranks.table({"ranks": 4, "realizations": 3, "many_realizations": 1, "window": [0.3, 0.5],
+                        "metrics": ranks.compare(one, {key: [107.0] for key in ranks.METRICS}), "maps": lone})
+    check("table with one map on many ranks says so", "one map on many ranks" in text and "1 on 4" in text, text)
+    check("runs: 3 realizations on 1 rank, 1 on 4",
+          [r.name for r in ranks.runs(4, 3, 1)] == ["rank1_r1", "rank1_r2", "rank1_r3", "ranks4_r1"])
     print("all passed" if not failures else f"{len(failures)} failed: {failures}")
     return 1 if failures else 0
 

@@ -1,17 +1,18 @@
 """Goldschmidt's bed on N ranks against one rank (issue 29): are its statistics those of one
 rank, within the noise of independent realizations?
 
-    ranks.py run [--ranks 4] [--realizations 3] [--end-time 1] [--jobs 2]
-    ranks.py report [--ranks 4] [--window 0.3 1]
+    ranks.py run [--ranks 4] [--realizations 3] [--many-realizations 3] [--end-time 1] [--jobs 2]
+    ranks.py report [--ranks 4] [--realizations 3] [--many-realizations 3] [--window 0.3 1]
 
 A bed this chaotic cannot match one rank to round-off on N ranks (the sums of contact forces
 come in another order), so the test is statistical. `run` pours the bed once (bed.data, as
 segregation.py) and runs it with the polydisperse drag from realizations of one initial
 state: r1 the poured bed at rest, r2, r3, ... its particles given random velocities of
 JIGGLE m/s (tfdem.packing.jiggle, one seed a realization), far below the bed's own motion;
-the bed's chaos makes them independent realizations within a few tenths of a second. Each
-realization runs on 1 rank (runs/rank1_r<k>) and on N ranks (runs/ranks<N>_r<k>), the gas
-whole on every rank, with the bed probes of tfdem.bed (Delta p at 20 cm, solids-fraction
+the bed's chaos makes them independent realizations within a few tenths of a second. The
+realizations run on 1 rank (runs/rank1_r<k>) and on N ranks (runs/ranks<N>_r<k>; as many, or
+fewer: --many-realizations, down to one, whose error is then the 1-rank realizations' spread,
+the scatter a single run has), the gas whole on every rank, with the bed probes of tfdem.bed (Delta p at 20 cm, solids-fraction
 maps) and the particle statistics every 0.01 s; resumable as the other batches.
 
 `report` takes each run's means over the window (default: from 0.3 s, after the bed's lift,
@@ -69,9 +70,12 @@ class RealizationRun(BedRun):
             jiggle(self.case.file(self.case.particles_file()), JIGGLE, SEEDS[self.realization - 2])
 
 
-def runs(ranks, realizations, root=HERE):
-    """Every realization on one rank, then on `ranks` ranks."""
-    return [RealizationRun(r, k, root) for r in (1, ranks) for k in range(1, realizations + 1)]
+def runs(ranks, realizations, many_realizations=None, root=HERE):
+    """Realizations 1 .. `realizations` on one rank, then 1 .. `many_realizations` (default as
+    many) on `ranks` ranks."""
+    many = realizations if many_realizations is None else many_realizations
+    return ([RealizationRun(1, k, root) for k in range(1, realizations + 1)]
+            + [RealizationRun(ranks, k, root) for k in range(1, many + 1)])
 
 
 def run_metrics(case, start, end):
@@ -86,12 +90,21 @@ def run_metrics(case, start, end):
     return values, out.field_average(out.solids, start, end)
 
 
+def single_realization(value, spread):
+    """One realization as an estimate of its configuration's mean: its error is the spread of
+    the realizations (the scatter one run has), taken from the other rank count's."""
+    return {"mean": float(value), "error": float(spread), "spread": float(spread), "n": 1, "values": [float(value)]}
+
+
 def compare(one_rank, many_ranks):
-    """The two rank counts' ensembles of each metric ({metric: [values, one a realization]})
-    and their difference (many - one) with its standard error and size in standard errors."""
+    """The two rank counts' ensembles of each metric ({metric: [values, one a realization]};
+    at least two on one rank, one or more on many) and their difference (many - one) with its
+    standard error and size in standard errors."""
     out = {}
     for key in METRICS:
-        a, b = ensemble(one_rank[key]), ensemble(many_ranks[key])
+        a = ensemble(one_rank[key])
+        b = (ensemble(many_ranks[key]) if len(many_ranks[key]) > 1
+             else single_realization(many_ranks[key][0], a["spread"]))
         d = difference(b, a)
         out[key] = {"one_rank": a, "many_ranks": b, "difference": d,
                     "in_errors": d["mean"] / d["error"] if d["error"] > 0 else float("inf")}
@@ -100,10 +113,12 @@ def compare(one_rank, many_ranks):
 
 def maps_comparison(maps_one, maps_many):
     """The solids-fraction maps: mean L1 across the rank counts, the floor within each, and
-    the exact permutation test's p."""
-    floor = l1_noise_floor(maps_one)["mean"], l1_noise_floor(maps_many)["mean"]
-    return {"cross": float(numpy.mean(cross_l1(maps_one, maps_many))), "floor_one_rank": floor[0],
-            "floor_many_ranks": floor[1], "p": l1_permutation_test(maps_one, maps_many)["p"]}
+    the exact permutation test's p (None, as the floor within many, with one map on many)."""
+    two = len(maps_many) > 1
+    return {"cross": float(numpy.mean(cross_l1(maps_one, maps_many))),
+            "floor_one_rank": l1_noise_floor(maps_one)["mean"],
+            "floor_many_ranks": l1_noise_floor(maps_many)["mean"] if two else None,
+            "p": l1_permutation_test(maps_one, maps_many)["p"] if two else None}
 
 
 def table(result):
@@ -120,24 +135,28 @@ def table(result):
                      f"{pm(c['difference'])} | {c['in_errors']:+.1f} |")
     m = result["maps"]
     lines.append("")
+    many = result["many_realizations"]
+    within_many = (f", within {n} ranks {m['floor_many_ranks']:.4f}; permutation test p = {m['p']:.2f}"
+                   if m["p"] is not None else " (one map on many ranks: no floor within it, no permutation test)")
     lines.append(f"Solids-fraction maps (time-averaged over the window): L1 across the rank counts {m['cross']:.4f}, "
-                 f"within 1 rank {m['floor_one_rank']:.4f}, within {n} ranks {m['floor_many_ranks']:.4f}; "
-                 f"permutation test p = {m['p']:.2f}. Realizations: {result['realizations']} a rank count "
-                 f"(mean ± the standard error across them).")
+                 f"within 1 rank {m['floor_one_rank']:.4f}{within_many}. Realizations: {result['realizations']} on "
+                 f"1 rank, {many} on {n} (mean ± the standard error across them"
+                 f"{'; one realization: ± the 1-rank spread' if many == 1 else ''}).")
     return "\n".join(lines)
 
 
-def report(ranks, realizations, window, root=HERE):
+def report(ranks, realizations, many_realizations, window, root=HERE):
     one, many = {k: [] for k in METRICS}, {k: [] for k in METRICS}
     maps = {1: [], ranks: []}
-    for r in runs(ranks, realizations, root):
+    for r in runs(ranks, realizations, many_realizations, root):
         if not r.done():
             raise BatchError(f"{r.name} has not finished: run it first (ranks.py run)")
         values, solids = run_metrics(r.case, *window)
         for key in METRICS:
             (one if r.ranks == 1 else many)[key].append(values[key])
         maps[r.ranks].append(solids)
-    result = {"ranks": ranks, "realizations": realizations, "window": list(window),
+    result = {"ranks": ranks, "realizations": realizations, "many_realizations": many_realizations,
+              "window": list(window),
               "per_run": {"one_rank": one, "many_ranks": many},
               "metrics": compare(one, many), "maps": maps_comparison(maps[1], maps[ranks])}
     os.makedirs(os.path.join(root, "results"), exist_ok=True)
@@ -154,6 +173,8 @@ def main(argv=None):
     parser.add_argument("action", choices=("run", "report"))
     parser.add_argument("--ranks", type=int, default=4, help="the rank count to compare with one (default 4)")
     parser.add_argument("--realizations", type=int, default=3, help=f"per rank count, 2 to {len(SEEDS) + 1} (default 3)")
+    parser.add_argument("--many-realizations", type=int, default=None,
+                        help="on the N ranks, 1 to --realizations (default as many)")
     parser.add_argument("--end-time", type=float, default=1.0, help="simulated seconds per run (default 1)")
     parser.add_argument("--window", type=float, nargs=2, default=None, metavar=("START", "END"),
                         help="the report's averaging window, s (default 0.3 to the end time)")
@@ -161,15 +182,18 @@ def main(argv=None):
     args = parser.parse_args(argv)
     if args.ranks < 2 or not 2 <= args.realizations <= len(SEEDS) + 1:
         parser.error(f"--ranks must be 2 or more and --realizations 2 to {len(SEEDS) + 1}")
+    many = args.realizations if args.many_realizations is None else args.many_realizations
+    if not 1 <= many <= args.realizations:
+        parser.error(f"--many-realizations must be 1 to --realizations ({args.realizations}), got {many}")
     window = args.window or (0.3, args.end_time)
     try:
         if args.action == "run":
             if not os.path.exists(os.path.join(HERE, "bed.data")):
                 print("pouring the bed (tfdem.packing, packing.yaml)", flush=True)
                 print(pour_case(HERE, ranks=2), flush=True)
-            if not run_batch(runs(args.ranks, args.realizations), args.end_time, args.jobs):
+            if not run_batch(runs(args.ranks, args.realizations, many), args.end_time, args.jobs):
                 return 1
-        report(args.ranks, args.realizations, window)
+        report(args.ranks, args.realizations, many, window)
     except (BatchError, CaseError, RunError, ValueError) as e:
         print(f"ranks.py: {e}", file=sys.stderr)
         return 2
