@@ -126,7 +126,14 @@ def check_refined_runs():
           ranks_pairs(runs, list(runs)) == (("c", "c_4"), ("f", "f_4")), str(ranks_pairs(runs, list(runs))))
     check("a run on N ranks pairs with no grid", ("c_4", "f_4") not in grid_pairs(runs, list(runs))
           and ("c", "c_4") not in grid_pairs(runs, list(runs)), str(grid_pairs(runs, list(runs))))
-    del runs["c_4"], runs["f_4"]
+    from replicates import GAS_VELOCITY_KEY, interpolation_pairs
+    runs["m2_interp"] = {"bed": "jet", "coupling": {"coupling.transfer": "per_particle", GAS_VELOCITY_KEY: "interpolated"}}
+    runs["c_cell"] = {"bed": "jet", "coupling": {GAS_VELOCITY_KEY: "cell"}}
+    runs["c_interp"] = {"bed": "jet", "coupling": {GAS_VELOCITY_KEY: "interpolated"}}
+    check("interpolation pairs: the same run with its cell's (the default or named) and the interpolated gas "
+          "velocity, no other", interpolation_pairs(runs, list(runs)) ==
+          (("c", "c_interp"), ("c_cell", "c_interp"), ("m2", "m2_interp")), str(interpolation_pairs(runs, list(runs))))
+    del runs["c_4"], runs["f_4"], runs["m2_interp"], runs["c_cell"], runs["c_interp"]
     for line, expect in (("jet_r: {bed: jet, ranks: 0}", "run jet_r: ranks must be a whole number of MPI ranks"),
                          ("jet_r: {bed: jet, ranks: 2.5}", "run jet_r: ranks must be a whole number of MPI ranks"),
                          ("jet_r: {bed: jet, ranks: 2, gas: halved}", "run jet_r: gas: gas layout 'halved'")):

@@ -294,7 +294,8 @@ class Headline:
 
 def pair_lines(replicates_result, window):
     """The pairs table: every comparison of two configurations the replicates make (method 2 -
-    method 1, fine - coarse, the separation test's parts, the gas step's, N ranks - 1 rank),
+    method 1, fine - coarse, the separation test's parts, the gas step's, N ranks - 1 rank, the
+    interpolated gas velocity - its cell's),
     over `window`: the solids-fraction maps' L1 across the two against the realizations' floor
     (and the permutation p), and the differences of the ensemble means with their size in
     standard errors."""

@@ -76,6 +76,22 @@ def ranks_pairs(runs, configs):
                         and runs[b].get("ranks", 1) > 1 and _rest(runs[a], keys) == _rest(runs[b], keys)))
 
 
+GAS_VELOCITY_KEY = "coupling.gas_velocity_at_particle"
+
+
+def interpolation_pairs(runs, configs):
+    """(its cell's, interpolated) pairs of configurations that differ in the gas velocity a
+    particle sees alone (coupling.yaml's gas_velocity_at_particle), e.g. uniform_m2 and
+    uniform_m2_interpolated."""
+    def rest(spec):
+        coupling = {k: v for k, v in spec.get("coupling", {}).items() if k != GAS_VELOCITY_KEY}
+        return dict(_rest(spec, ("coupling",)), coupling=coupling)
+    return tuple(sorted((a, b) for a in configs for b in configs
+                        if runs[a].get("coupling", {}).get(GAS_VELOCITY_KEY, "cell") == "cell"
+                        and runs[b].get("coupling", {}).get(GAS_VELOCITY_KEY) == "interpolated"
+                        and rest(runs[a]) == rest(runs[b])))
+
+
 BLOCK_KEY = "coupling.void_fraction.particle_field_block"
 
 
@@ -244,6 +260,9 @@ class Replicates:
     def ranks_pairs(self):
         return ranks_pairs(self.report.study["runs"], list(self.groups))
 
+    def interpolation_pairs(self):
+        return interpolation_pairs(self.report.study["runs"], list(self.groups))
+
     def separation_pairs(self):
         """The map comparisons of the separation test: the separated run against fine and coarse."""
         return tuple(p for c, s, f in self.separation_triples() for p in ((s, f), (c, s)))
@@ -270,7 +289,7 @@ class Replicates:
                     maps, rows = self.maps(config, w, symmetric)
                     floors.setdefault(config, {})[w + tag] = l1_noise_floor(maps, rows)
                 for a, b in (METHOD_PAIRS + self.grid_pairs() + self.separation_pairs() + self.step_pairs()
-                             + self.ranks_pairs()):
+                             + self.ranks_pairs() + self.interpolation_pairs()):
                     if a in self.groups and b in self.groups:
                         (ma, rows), (mb, _) = self.maps(a, w, symmetric), self.maps(b, w, symmetric)
                         cross = cross_l1(ma, mb, rows)
@@ -291,7 +310,8 @@ class Replicates:
                             ("coarse field - fine", tuple((f, s) for _, s, f in separation)),
                             ("coarse field - coarse", tuple((c, s) for c, s, _ in separation)),
                             ("own gas step - template's", self.step_pairs()),
-                            ("N ranks - 1 rank", self.ranks_pairs())):
+                            ("N ranks - 1 rank", self.ranks_pairs()),
+                            ("interpolated - its cell's", self.interpolation_pairs())):
             for a, b in pairs:
                 if a not in ensembles or b not in ensembles:
                     continue
