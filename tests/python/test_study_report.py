@@ -357,6 +357,10 @@ def check_pairs_and_blocks():
     check("pairs table: the row's maps and differences (height in cm)",
           row == "| fine - coarse | `b` − `a` | 0.0200 (0.0100; 2.00; 0.029) | +0.20 ± 0.10 (+2.0) | "
                  "-30 ± 10 (-3.0) | +5.0 ± 5.0 (+1.0) | +0.100 ± 0.050 (+2.0) |", row)
+    result["configurations"] = {"a": ["a_r1", "a_r2", "a_r3", "a_r4"], "b": ["b_r1", "b_r2"]}
+    row = headline.pair_lines(result, "5-20")[-1]
+    check("pairs table: a configuration of other than four realizations names its n",
+          row.startswith("| fine - coarse | `b` (n = 2) − `a` | "), row)
     begin, end = headline.markers("the x")
     text = f"top\n{begin}\nold\n{end}\nbottom\n"
     check("replace_block: the block between the markers, the rest kept",

@@ -303,7 +303,12 @@ def pair_lines(replicates_result, window):
     comparisons = r["maps"]["comparisons"]
     quantities = (("mean_height mean", "mean height (cm)", 100.0), ("dp20 mean", "Δp at 20 cm (Pa)", 1.0),
                   ("dp20 std", "Δp std (Pa)", 1.0), ("bulk_coordination mean", "N_c", 1.0))
-    lines = [f"Ensemble means over {window} s (four realizations a configuration): b − a ± the two standard errors "
+    counts = {config: len(names) for config, names in r.get("configurations", {}).items()}
+
+    def named(config):
+        n = counts.get(config, 4)
+        return f"`{config}`" + (f" (n = {n})" if n != 4 else "")
+    lines = [f"Ensemble means over {window} s (four realizations a configuration, else its n): b − a ± the two standard errors "
              "in quadrature, in brackets in standard errors; maps: the mean L1 of the time-averaged solids fraction "
              "(bottom 45 cm, on the coarser cells) over every pair of realizations across the two, against the mean "
              "within one configuration (the floor), with the exact permutation test's p (0.029 is the smallest 4 + 4 "
@@ -318,7 +323,7 @@ def pair_lines(replicates_result, window):
                     f"{c['permutation']['p']:.3f})") if c else "-"
             cells = [f"{signed(values[window][q]['mean'], values[window][q]['error'], scale)} "
                      f"({values[window][q]['in_errors']:+.1f})" for q, _, scale in quantities]
-            lines.append(f"| {kind} | `{b}` − `{a}` | {maps} | " + " | ".join(cells) + " |")
+            lines.append(f"| {kind} | {named(b)} − {named(a)} | {maps} | " + " | ".join(cells) + " |")
     return lines
 
 
