@@ -361,6 +361,10 @@ def check_pairs_and_blocks():
     row = headline.pair_lines(result, "5-20")[-1]
     check("pairs table: a configuration of other than four realizations names its n",
           row.startswith("| fine - coarse | `b` (n = 2) − `a` | "), row)
+    timing = {"DEM": 4.0, "locate+map": 0.5, "forces": 0.25, "gas": 1.0, "statistics": 0.125, "checkpoints": 0.125,
+              "segments": 2, "segments_timed": 2}
+    check("statistics' share: 0.125 s of the 6 s timed = 2.0833 %, the segment counts not summed",
+          close(headline.statistics_share(timing), 100 * 0.125 / 6), str(headline.statistics_share(timing)))
     begin, end = headline.markers("the x")
     text = f"top\n{begin}\nold\n{end}\nbottom\n"
     check("replace_block: the block between the markers, the rest kept",
