@@ -12,8 +12,9 @@ JIGGLE m/s (tfdem.packing.jiggle, one seed a realization), far below the bed's o
 the bed's chaos makes them independent realizations within a few tenths of a second. The
 realizations run on 1 rank (runs/rank1_r<k>) and on N ranks (runs/ranks<N>_r<k>; as many, or
 fewer: --many-realizations, down to one, whose error is then the 1-rank realizations' spread,
-the scatter a single run has), the gas whole on every rank, with the bed probes of tfdem.bed (Delta p at 20 cm, solids-fraction
-maps) and the particle statistics every 0.01 s; resumable as the other batches.
+the scatter a single run has), the gas whole on every rank, with the bed probes of tfdem.bed
+(Delta p at 20 cm, solids-fraction maps) and the particle statistics every 0.01 s; resumable
+as the other batches.
 
 `report` takes each run's means over the window (default: from 0.3 s, after the bed's lift,
 to the end): Delta p at 20 cm and its fluctuation, the mean particle height, the degree of
