@@ -21,7 +21,8 @@ to the end): Delta p at 20 cm and its fluctuation, the mean particle height, the
 segregation s (seed 001 eq. 49), the bulk coordination number; the ensemble means of the two
 rank counts with their standard errors across realizations and their difference; and the
 time-averaged solids-fraction maps' L1 across the rank counts against the L1 within one
-(tfdem.bed.l1_permutation_test). Written to results/ranks.json and results/ranks.md.
+(tfdem.bed.l1_permutation_test). Written to results/ranks.json and results/ranks.md, and each
+run's Delta p series over [0, window end] to results/ranks_dp.csv.
 """
 import argparse
 import json
@@ -146,6 +147,21 @@ def table(result):
     return "\n".join(lines)
 
 
+def write_dp_series(run_list, end, path):
+    """Delta p at 20 cm of each run as probed (every 0.01 s), from 0 to `end`, one column a run:
+    the series behind the README's account of the window, small enough to keep."""
+    series = {}
+    for r in run_list:
+        out = BedOutputs(r.case)
+        t, dp = numpy.asarray(out.p_t), numpy.asarray(out.dp)
+        series[r.name] = (t[t <= end + 1e-9], dp[t <= end + 1e-9])
+    times = min((t for t, _ in series.values()), key=len)
+    with open(path, "w") as f:
+        f.write("t (s)," + ",".join(f"{name} (Pa)" for name in series) + "\n")
+        for i, ti in enumerate(times):
+            f.write(f"{ti:.4g}," + ",".join(f"{numpy.interp(ti, t, dp):.1f}" for t, dp in series.values()) + "\n")
+
+
 def report(ranks, realizations, many_realizations, window, root=HERE):
     one, many = {k: [] for k in METRICS}, {k: [] for k in METRICS}
     maps = {1: [], ranks: []}
@@ -163,6 +179,8 @@ def report(ranks, realizations, many_realizations, window, root=HERE):
     os.makedirs(os.path.join(root, "results"), exist_ok=True)
     with open(os.path.join(root, "results", "ranks.json"), "w") as f:
         json.dump(result, f, indent=1)
+    write_dp_series(runs(ranks, realizations, many_realizations, root), window[1],
+                    os.path.join(root, "results", "ranks_dp.csv"))
     text = table(result)
     with open(os.path.join(root, "results", "ranks.md"), "w") as f:
         f.write(text + "\n")
