@@ -56,9 +56,10 @@ def scalar_metrics(dp_t, dp, height_t, height, start, end, batch, band):
     """The scalar metrics of one run over [start, end] (batches and band in seconds)."""
     dp_t, dp = numpy.asarray(dp_t), numpy.asarray(dp)
     pick = (dp_t >= start - 1e-9) & (dp_t <= end + 1e-9)
-    band_t, in_band = running_mean(dp_t, dp, band)
-    half = (len(dp) - len(in_band)) // 2
-    jitter = dp[half:half + len(in_band)] - in_band
+    upto = dp_t <= end + 1e-9  # no running mean reaches past the window: a run that ran on scores the same
+    band_t, in_band = running_mean(dp_t[upto], dp[upto], band)
+    half = (numpy.count_nonzero(upto) - len(in_band)) // 2
+    jitter = dp[upto][half:half + len(in_band)] - in_band
     return {"dp20_mean": batch_stat(dp_t, dp, start, end, batch),
             "dp20_std": batch_std(band_t, in_band, start, end, batch),
             "dp20_jitter": batch_std(band_t, jitter, start, end, batch),
