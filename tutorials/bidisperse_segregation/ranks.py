@@ -2,7 +2,7 @@
 rank, within the noise of independent realizations?
 
     ranks.py run [--ranks 4] [--realizations 3] [--many-realizations 3] [--end-time 1] [--jobs 2]
-    ranks.py report [--ranks 4] [--realizations 3] [--many-realizations 3] [--window 0.3 1]
+    ranks.py report [--ranks 4] [--realizations 3] [--many-realizations 3] [--window 0.6 1] [--name ranks]
 
 A bed this chaotic cannot match one rank to round-off on N ranks (the sums of contact forces
 come in another order), so the test is statistical. `run` pours the bed once (bed.data, as
@@ -16,13 +16,14 @@ the scatter a single run has), the gas whole on every rank, with the bed probes 
 (Delta p at 20 cm, solids-fraction maps) and the particle statistics every 0.01 s; resumable
 as the other batches.
 
-`report` takes each run's means over the window (default: from 0.3 s, after the bed's lift,
-to the end): Delta p at 20 cm and its fluctuation, the mean particle height, the degree of
+`report` takes each run's means over the window (default: from WINDOW_START, the bubbling
+bed after its first eruption, to the end): Delta p at 20 cm and its fluctuation, the mean particle height, the degree of
 segregation s (seed 001 eq. 49), the bulk coordination number; the ensemble means of the two
 rank counts with their standard errors across realizations and their difference; and the
 time-averaged solids-fraction maps' L1 across the rank counts against the L1 within one
-(tfdem.bed.l1_permutation_test). Written to results/ranks.json and results/ranks.md, and each
-run's Delta p series over [0, window end] to results/ranks_dp.csv.
+(tfdem.bed.l1_permutation_test). Written to results/<name>.json and results/<name>.md
+(--name, default ranks), and each run's Delta p series over the span all runs reached to
+results/ranks_dp.csv.
 """
 import argparse
 import json
@@ -42,6 +43,7 @@ from tfdem.stats import difference, ensemble, interval_mean
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 JIGGLE = 1e-6  # m/s: the realizations' random velocities, a millionth of the bubbles' speeds
+WINDOW_START = 0.6  # s: Delta p falls in the first eruption over 0.41-0.5 s; bubbling after it
 SEEDS = (104729, 224737, 350377, 479909, 611953, 746773)  # the 10,000th ... 60,000th primes
 LAW = {"coupling.drag_law": "beetstra", "coupling.polydisperse_drag": "beetstra_2007"}
 METRICS = {  # name: (label, unit, scale)
@@ -147,22 +149,21 @@ def table(result):
     return "\n".join(lines)
 
 
-def write_dp_series(run_list, end, path):
-    """Delta p at 20 cm of each run as probed (every 0.01 s), from 0 to `end`, one column a run:
-    the series behind the README's account of the window, small enough to keep."""
+def write_dp_series(run_list, path):
+    """Delta p at 20 cm of each run as probed (every 0.01 s), from 0 to the end all runs reached,
+    one column a run: the series behind the README's account of the bed, small enough to keep."""
     series = {}
     for r in run_list:
         out = BedOutputs(r.case)
-        t, dp = numpy.asarray(out.p_t), numpy.asarray(out.dp)
-        series[r.name] = (t[t <= end + 1e-9], dp[t <= end + 1e-9])
-    times = min((t for t, _ in series.values()), key=len)
+        series[r.name] = (numpy.asarray(out.p_t), numpy.asarray(out.dp))
+    times = min((t for t, _ in series.values()), key=lambda t: t[-1])
     with open(path, "w") as f:
         f.write("t (s)," + ",".join(f"{name} (Pa)" for name in series) + "\n")
-        for i, ti in enumerate(times):
+        for ti in times:
             f.write(f"{ti:.4g}," + ",".join(f"{numpy.interp(ti, t, dp):.1f}" for t, dp in series.values()) + "\n")
 
 
-def report(ranks, realizations, many_realizations, window, root=HERE):
+def report(ranks, realizations, many_realizations, window, name="ranks", root=HERE):
     one, many = {k: [] for k in METRICS}, {k: [] for k in METRICS}
     maps = {1: [], ranks: []}
     for r in runs(ranks, realizations, many_realizations, root):
@@ -177,12 +178,11 @@ def report(ranks, realizations, many_realizations, window, root=HERE):
               "per_run": {"one_rank": one, "many_ranks": many},
               "metrics": compare(one, many), "maps": maps_comparison(maps[1], maps[ranks])}
     os.makedirs(os.path.join(root, "results"), exist_ok=True)
-    with open(os.path.join(root, "results", "ranks.json"), "w") as f:
+    with open(os.path.join(root, "results", f"{name}.json"), "w") as f:
         json.dump(result, f, indent=1)
-    write_dp_series(runs(ranks, realizations, many_realizations, root), window[1],
-                    os.path.join(root, "results", "ranks_dp.csv"))
+    write_dp_series(runs(ranks, realizations, many_realizations, root), os.path.join(root, "results", "ranks_dp.csv"))
     text = table(result)
-    with open(os.path.join(root, "results", "ranks.md"), "w") as f:
+    with open(os.path.join(root, "results", f"{name}.md"), "w") as f:
         f.write(text + "\n")
     print(text)
 
@@ -196,7 +196,8 @@ def main(argv=None):
                         help="on the N ranks, 1 to --realizations (default as many)")
     parser.add_argument("--end-time", type=float, default=1.0, help="simulated seconds per run (default 1)")
     parser.add_argument("--window", type=float, nargs=2, default=None, metavar=("START", "END"),
-                        help="the report's averaging window, s (default 0.3 to the end time)")
+                        help=f"the report's averaging window, s (default {WINDOW_START:g} to the end time)")
+    parser.add_argument("--name", default="ranks", help="the report's files: results/NAME.json, .md (default ranks)")
     parser.add_argument("--jobs", type=int, default=2)
     args = parser.parse_args(argv)
     if args.ranks < 2 or not 2 <= args.realizations <= len(SEEDS) + 1:
@@ -204,7 +205,7 @@ def main(argv=None):
     many = args.realizations if args.many_realizations is None else args.many_realizations
     if not 1 <= many <= args.realizations:
         parser.error(f"--many-realizations must be 1 to --realizations ({args.realizations}), got {many}")
-    window = args.window or (0.3, args.end_time)
+    window = args.window or (WINDOW_START, args.end_time)
     try:
         if args.action == "run":
             if not os.path.exists(os.path.join(HERE, "bed.data")):
@@ -212,7 +213,7 @@ def main(argv=None):
                 print(pour_case(HERE, ranks=2), flush=True)
             if not run_batch(runs(args.ranks, args.realizations, many), args.end_time, args.jobs):
                 return 1
-        report(args.ranks, args.realizations, many, window)
+        report(args.ranks, args.realizations, many, window, args.name)
     except (BatchError, CaseError, RunError, ValueError) as e:
         print(f"ranks.py: {e}", file=sys.stderr)
         return 2
