@@ -17,11 +17,11 @@ the scatter a single run has), the gas whole on every rank, with the bed probes 
 as the other batches.
 
 `report` takes each run's means over the window (default: from WINDOW_START, the bubbling
-bed after its first eruption, to the end): Delta p at 20 cm and its fluctuation, the mean particle height, the degree of
-segregation s (seed 001 eq. 49), the bulk coordination number; the ensemble means of the two
-rank counts with their standard errors across realizations and their difference; and the
-time-averaged solids-fraction maps' L1 across the rank counts against the L1 within one
-(tfdem.bed.l1_permutation_test). Written to results/<name>.json and results/<name>.md
+bed after its first eruption, to the end): Delta p at 20 cm and its fluctuation, the mean
+particle height, the degree of segregation s (seed 001 eq. 49), the bulk coordination
+number; the ensemble means of the two rank counts with their standard errors across
+realizations and their difference; and the time-averaged solids-fraction maps' L1 across the
+rank counts against the L1 within one (tfdem.bed.l1_permutation_test). Written to results/<name>.json and results/<name>.md
 (--name, default ranks), and each run's Delta p series over the span all runs reached to
 results/ranks_dp.csv.
 """
@@ -180,7 +180,8 @@ def report(ranks, realizations, many_realizations, window, name="ranks", root=HE
     os.makedirs(os.path.join(root, "results"), exist_ok=True)
     with open(os.path.join(root, "results", f"{name}.json"), "w") as f:
         json.dump(result, f, indent=1)
-    write_dp_series(runs(ranks, realizations, many_realizations, root), os.path.join(root, "results", "ranks_dp.csv"))
+    write_dp_series(runs(ranks, realizations, many_realizations, root),
+                    os.path.join(root, "results", "ranks_dp.csv"))
     text = table(result)
     with open(os.path.join(root, "results", f"{name}.md"), "w") as f:
         f.write(text + "\n")
@@ -206,6 +207,9 @@ def main(argv=None):
     if not 1 <= many <= args.realizations:
         parser.error(f"--many-realizations must be 1 to --realizations ({args.realizations}), got {many}")
     window = args.window or (WINDOW_START, args.end_time)
+    if not window[0] < window[1]:
+        parser.error(f"the window {window[0]:g}-{window[1]:g} s is empty: give --window START END, "
+                     f"or an --end-time past {WINDOW_START:g} s")
     try:
         if args.action == "run":
             if not os.path.exists(os.path.join(HERE, "bed.data")):
