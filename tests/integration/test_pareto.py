@@ -9,8 +9,9 @@
    G = (1 + 2 cos w + 2 cos 2w) / 5 of its amplitude (w = 0.04 pi per sample) and the jitter
    3/5, so the band's fluctuation is sqrt((10 G)^2 / 2 + 0.6^2) and the jitter's
    sqrt((10 (1 - G))^2 / 2 + 2.4^2); over 0.5-3.49 s the series cut at 3.49 s scores as
-   the whole one (a run that ran on past the window as one that stopped at its end); solids maps of 0.5 and 0.4 everywhere: L1 0.1 on the coarse grid, also when
-   the point's map is on a twice finer grid; the Pareto front of three (cost, error) pairs.
+   the whole one (a run that ran on past the window as one that stopped at its end); solids
+   maps of 0.5 and 0.4 everywhere: L1 0.1 on the coarse grid, also when the point's map is on
+   a twice finer grid; the Pareto front of three (cost, error) pairs.
 2. A tiny sweep (the bubbling bed, 2 points, 0.05 s) runs and writes its CSV, plots and table;
    a misspelt point key and a negative DEM step are refused with a message naming them.
 """

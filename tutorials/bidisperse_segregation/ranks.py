@@ -21,9 +21,9 @@ bed after its first eruption, to the end): Delta p at 20 cm and its fluctuation,
 particle height, the degree of segregation s (seed 001 eq. 49), the bulk coordination
 number; the ensemble means of the two rank counts with their standard errors across
 realizations and their difference; and the time-averaged solids-fraction maps' L1 across the
-rank counts against the L1 within one (tfdem.bed.l1_permutation_test). Written to results/<name>.json and results/<name>.md
-(--name, default ranks), and each run's Delta p series over the span all runs reached to
-results/ranks_dp.csv.
+rank counts against the L1 within one (tfdem.bed.l1_permutation_test). Written to
+results/<name>.json and results/<name>.md (--name, default ranks), and each run's Delta p
+series over the span all runs reached to results/ranks_dp.csv.
 """
 import argparse
 import json
@@ -82,9 +82,12 @@ def runs(ranks, realizations, many_realizations=None, root=HERE):
             + [RealizationRun(ranks, k, root) for k in range(1, many + 1)])
 
 
-def run_metrics(case, start, end):
-    """A run's means over [start, end] (METRICS) and its time-averaged solids-fraction map."""
-    out = BedOutputs(case)
+def run_metrics(out, start, end):
+    """A run's means over [start, end] (METRICS) and its time-averaged solids-fraction map, from
+    its BedOutputs; a window past the run's last probe is refused."""
+    if out.p_t[-1] < end - 1e-9:
+        raise ValueError(f"{out.case.path}: probed to {out.p_t[-1]:g} s, short of the window's end {end:g} s: "
+                         f"give a --window inside the runs, or run them on (ranks.py run --end-time {end:g})")
     t, height = out.mean_height()
     scalars = scalar_metrics(out.p_t, out.dp, t, height, start, end, end - start, BAND)
     values = {"dp_mean": scalars["dp20_mean"]["value"], "dp_fluctuation": scalars["dp20_std"]["value"],
@@ -149,13 +152,10 @@ def table(result):
     return "\n".join(lines)
 
 
-def write_dp_series(run_list, path):
-    """Delta p at 20 cm of each run as probed (every 0.01 s), from 0 to the end all runs reached,
-    one column a run: the series behind the README's account of the bed, small enough to keep."""
-    series = {}
-    for r in run_list:
-        out = BedOutputs(r.case)
-        series[r.name] = (numpy.asarray(out.p_t), numpy.asarray(out.dp))
+def write_dp_series(series, path):
+    """Delta p at 20 cm of each run ({name: (t, Delta p)}, probed every 0.01 s), from 0 to the end
+    all runs reached, one column a run: the series behind the README's account of the bed, small
+    enough to keep."""
     times = min((t for t, _ in series.values()), key=lambda t: t[-1])
     with open(path, "w") as f:
         f.write("t (s)," + ",".join(f"{name} (Pa)" for name in series) + "\n")
@@ -166,10 +166,13 @@ def write_dp_series(run_list, path):
 def report(ranks, realizations, many_realizations, window, name="ranks", root=HERE):
     one, many = {k: [] for k in METRICS}, {k: [] for k in METRICS}
     maps = {1: [], ranks: []}
+    series = {}
     for r in runs(ranks, realizations, many_realizations, root):
         if not r.done():
             raise BatchError(f"{r.name} has not finished: run it first (ranks.py run)")
-        values, solids = run_metrics(r.case, *window)
+        out = BedOutputs(r.case)
+        series[r.name] = (numpy.asarray(out.p_t), numpy.asarray(out.dp))
+        values, solids = run_metrics(out, *window)
         for key in METRICS:
             (one if r.ranks == 1 else many)[key].append(values[key])
         maps[r.ranks].append(solids)
@@ -180,8 +183,7 @@ def report(ranks, realizations, many_realizations, window, name="ranks", root=HE
     os.makedirs(os.path.join(root, "results"), exist_ok=True)
     with open(os.path.join(root, "results", f"{name}.json"), "w") as f:
         json.dump(result, f, indent=1)
-    write_dp_series(runs(ranks, realizations, many_realizations, root),
-                    os.path.join(root, "results", "ranks_dp.csv"))
+    write_dp_series(series, os.path.join(root, "results", "ranks_dp.csv"))
     text = table(result)
     with open(os.path.join(root, "results", f"{name}.md"), "w") as f:
         f.write(text + "\n")
@@ -207,6 +209,8 @@ def main(argv=None):
     if not 1 <= many <= args.realizations:
         parser.error(f"--many-realizations must be 1 to --realizations ({args.realizations}), got {many}")
     window = args.window or (WINDOW_START, args.end_time)
+    if not args.name or os.path.basename(args.name) != args.name or args.name.startswith("."):
+        parser.error(f"--name {args.name!r} must be a plain file name (results/NAME.json), e.g. ranks_first_eruption")
     if not window[0] < window[1]:
         parser.error(f"the window {window[0]:g}-{window[1]:g} s is empty: give --window START END, "
                      f"or an --end-time past {WINDOW_START:g} s")
