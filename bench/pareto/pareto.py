@@ -26,19 +26,20 @@ twice the combined standard error sqrt(e^2 + e_ref^2).
 """
 import argparse
 import csv
-import difflib
+import io
 import os
+import re
 import sys
 
-import yaml
-
 from tfdem import TUTORIALS
-from tfdem.batch import BatchError, run_batch
+from tfdem.batch import run_batch
 from tfdem.accuracy import METRICS, map_error, pareto_front, scalar_error, scalar_metrics
 from tfdem.bed import BedOutputs
-from tfdem.bedstats import BedRun
+from tfdem.bedstats import BedRun, refuse_foreign_folder
 from tfdem.case import CaseError, set_sub_dict_entry
-from tfdem.run import DEFAULT_GAS_LAYOUT, RunError, check_gas_layout, run
+from tfdem.frontdoor import add_debug_option, doing, run_command, save_figure_atomic, write_text_atomic
+from tfdem.inputs import InputError, Source, load_yaml, positive_count, positive_number, shown, suggestion
+from tfdem.run import DEFAULT_GAS_LAYOUT, GAS_LAYOUTS, run
 
 SWEEP_KEYS = ("template", "packing", "dp_height", "end_time", "window", "batch", "band", "field_interval",
               "statistics_interval", "reference", "points")
@@ -46,36 +47,48 @@ OPTIONAL_SWEEP_KEYS = ("packing", "dp_height")
 POINT_KEYS = ("dem_time_step", "gas_time_step", "refine", "coupling", "fv_solution", "ranks", "gas")
 
 
-class SweepError(Exception):
+class SweepError(InputError):
     """A sweep definition problem, named with the file, the key and the fix."""
 
 
-def _unknown(path, where, key, valid):
-    near = difflib.get_close_matches(key, valid, 1)
-    return SweepError(f"{path}: {where}unknown key '{key}'" + (f" (did you mean '{near[0]}'?)" if near else "")
-                      + f"; valid: {', '.join(valid)}")
-
-
 def load_sweep(path):
-    try:
-        with open(path) as f:
-            sweep = yaml.safe_load(f)
-    except OSError as e:
-        raise SweepError(f"{path}: cannot read the sweep ({e.strerror})") from None
-    for key in sweep:
-        if key not in SWEEP_KEYS:
-            raise _unknown(path, "", key, SWEEP_KEYS)
+    """The sweep file read and checked (every key, every point); adds `path` and
+    `template_path`."""
+    source = Source(path, SweepError)
+    sweep = source.mapping("", load_yaml(path, SweepError), SWEEP_KEYS)
     for key in SWEEP_KEYS:
-        if key not in sweep and key not in OPTIONAL_SWEEP_KEYS:
-            raise SweepError(f"{path}: missing '{key}'")
-    for name, spec in sweep["points"].items():
-        for key in spec or {}:
-            if key not in POINT_KEYS:
-                raise _unknown(path, f"point {name}: ", key, POINT_KEYS)
-        _check_point(path, name, spec or {})
-    if sweep["reference"] not in sweep["points"]:
-        raise SweepError(f"{path}: reference '{sweep['reference']}' is not one of the points "
-                         f"({', '.join(sweep['points'])})")
+        if key not in OPTIONAL_SWEEP_KEYS:
+            source.required("", sweep, key, "it (bench/pareto/bubbling_bed.yaml shows every key)")
+    seconds = "a time in s above 0"
+    sweep["template"] = source.text("template", sweep["template"], "a tutorial's name or the path of a case")
+    sweep["end_time"] = source.number("end_time", sweep["end_time"], 0.0, low_open=True, what=seconds)
+    start, end = source.sequence("window", sweep["window"], 2, 2, "[start, end] in s")
+    start = source.number("window[0]", start, 0.0, what="the window's start in s, 0 or more")
+    end = source.number("window[1]", end, start, sweep["end_time"], low_open=True,
+                        what=f"the window's end in s, after its start and at most end_time ({sweep['end_time']:g})")
+    sweep["window"] = [start, end]
+    for key in ("batch", "band", "field_interval", "statistics_interval"):
+        sweep[key] = source.number(key, sweep[key], 0.0, low_open=True, what=seconds)
+    if sweep["band"] >= end - start:
+        source.fail("band", f"{shown(sweep['band'])} s is not shorter than the window ({end - start:g} s): give a "
+                    "shorter band")
+    if "dp_height" in sweep:
+        sweep["dp_height"] = source.number("dp_height", sweep["dp_height"], 0.0, low_open=True,
+                                           what="a height in m above 0")
+    if "packing" in sweep:
+        packing = source.mapping("packing", sweep["packing"], ("file", "make"))
+        for key in ("file", "make"):
+            source.text(f"packing.{key}", source.required("packing", packing, key, "a path relative to tutorials/"),
+                        "a path relative to tutorials/")
+    points = source.mapping("points", sweep["points"], what="a mapping of point names to their changes")
+    if not points:
+        source.fail("points", "no point: give at least the reference point")
+    for name, spec in points.items():
+        _check_point(source, name, spec)
+        points[name] = spec or {}
+    reference = source.text("reference", sweep["reference"], "the name of one of the points")
+    if reference not in points:
+        source.fail("reference", f"{shown(reference)} is not one of the points{suggestion(reference, list(points))}")
     sweep["path"] = os.path.abspath(path)
     sweep["template_path"] = template_path(sweep)
     return sweep
@@ -95,25 +108,31 @@ def template_path(sweep):
     return os.path.abspath(folder)
 
 
-def _check_point(path, name, spec):
-    """The point's numbers: steps positive seconds, ranks and refinement positive whole numbers."""
-    def bad(key, expected):
-        return SweepError(f"{path}: point {name}: {key} must be {expected}, got {spec[key]!r}")
-
-    for key in ("dem_time_step", "gas_time_step"):
-        if key in spec and not (isinstance(spec[key], (int, float)) and spec[key] > 0):
-            raise bad(key, "a positive number of seconds")
-    if "ranks" in spec and not (isinstance(spec["ranks"], int) and spec["ranks"] >= 1):
-        raise bad("ranks", "a whole number >= 1")
+def _check_point(source, name, spec):
+    """The point's name (a folder's: runs/<name>) and changes: steps positive seconds, ranks and
+    refinement whole numbers of 1 or more, the gas layout's name, the dictionaries' entries."""
+    key = f"points.{name}"
+    if not re.fullmatch(r"[A-Za-z0-9_.+-]+", name) or name in (".", ".."):
+        source.fail(key, f"{shown(name)} is not a plain folder name (its runs go to runs/<name>): use letters, "
+                    "digits, '_', '.', '+' and '-'")
+    spec = source.mapping(key, spec or {}, POINT_KEYS)
+    for step in ("dem_time_step", "gas_time_step"):
+        if step in spec:
+            spec[step] = source.number(f"{key}.{step}", spec[step], 0.0, low_open=True,
+                                       what="a positive number of seconds")
+    if "ranks" in spec:
+        spec["ranks"] = source.count(f"{key}.ranks", spec["ranks"], what="a whole number of MPI ranks, 1 or more")
     if "gas" in spec:
-        try:
-            check_gas_layout(spec["gas"])
-        except ValueError as e:
-            raise SweepError(f"{path}: point {name}: gas: {e}") from None
-    refine = spec.get("refine")
-    if refine is not None and not (isinstance(refine, list) and len(refine) == 2
-                                   and all(isinstance(f, int) and f >= 1 for f in refine)):
-        raise bad("refine", "[x, y], two whole numbers >= 1")
+        source.choice(f"{key}.gas", spec["gas"], list(GAS_LAYOUTS))
+    if "refine" in spec:
+        factors = source.sequence(f"{key}.refine", spec["refine"], 2, 2, "[x, y], two whole numbers >= 1")
+        spec["refine"] = [source.count(f"{key}.refine[{axis}]", f, what="a whole number >= 1")
+                          for axis, f in enumerate(factors)]
+    for section in ("coupling", "fv_solution"):
+        entries = source.mapping(f"{key}.{section}", spec.get(section, {}), what="a mapping of dotted keys to values")
+        for entry, value in entries.items():
+            if isinstance(value, (list, dict)) or value is None:
+                source.fail(f"{key}.{section}.{entry}", f"{shown(value)}: give one value")
 
 
 class Point(BedRun):
@@ -166,7 +185,9 @@ def _packing(sweep):
 def points_of(sweep, root, names=()):
     unknown = [n for n in names if n not in sweep["points"]]
     if unknown:
-        raise SweepError(f"unknown point(s) {', '.join(unknown)}; {sweep['path']} has: {', '.join(sweep['points'])}")
+        near = suggestion(unknown[0], list(sweep["points"]))
+        raise SweepError(f"--points: unknown point(s) {', '.join(unknown)}{near}; {sweep['path']} has: "
+                         f"{', '.join(sweep['points'])}")
     return [Point(n, s, sweep, root) for n, s in sweep["points"].items() if not names or n in names]
 
 
@@ -202,10 +223,11 @@ def report(sweep, points, end_time, out, cost="wall"):
             row[f"solids_map_{k}"] = v
         rows.append(row)
     os.makedirs(out, exist_ok=True)
-    with open(os.path.join(out, "pareto.csv"), "w", newline="") as f:
-        writer = csv.DictWriter(f, fieldnames=list(rows[0]))
-        writer.writeheader()
-        writer.writerows(rows)
+    table = io.StringIO(newline="")
+    writer = csv.DictWriter(table, fieldnames=list(rows[0]))
+    writer.writeheader()
+    writer.writerows(rows)
+    write_text_atomic(os.path.join(out, "pareto.csv"), table.getvalue())
     others = [r for r in rows if r["point"] != ref]
     for metric in METRICS:
         fig, ax = plt.subplots(figsize=(6, 4))
@@ -222,7 +244,7 @@ def report(sweep, points, end_time, out, cost="wall"):
         ax.set_title(f"{os.path.basename(sweep['path'])}: {metric}, {start:g}-{end:g} s", fontsize=9)
         ax.legend(fontsize=7)
         fig.tight_layout()
-        fig.savefig(os.path.join(out, f"pareto_{metric}.png"), dpi=110)
+        save_figure_atomic(fig, os.path.join(out, f"pareto_{metric}.png"), dpi=110)
         plt.close(fig)
     write_table(sweep, rows, ref, start, end, out)
     print(f"report: {len(rows)} points -> {out}")
@@ -254,17 +276,22 @@ def write_table(sweep, rows, ref, start, end, out):
             cells.append(text)
         lines.append(f"| {r['point']} | {r['wall_seconds']:.0f} | {r['cpu_seconds']:.0f} | " + " | ".join(cells) + " |")
     lines += ["", *(f"![{m}](pareto_{m}.png)" for m in METRICS), ""]
-    with open(os.path.join(out, "README.md"), "w") as f:
-        f.write("\n".join(lines))
+    write_text_atomic(os.path.join(out, "README.md"), "\n".join(lines))
 
 
 def main(argv=None):
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    return run_command("pareto.py", _pareto, argv)
+
+
+def _pareto(argv):
+    parser = argparse.ArgumentParser(prog="pareto.py", description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("command", choices=("run", "report"))
     parser.add_argument("sweep", help="sweep definition (bench/pareto/<case>.yaml)")
-    parser.add_argument("--end-time", type=float, default=None, help="simulated seconds per point (default: the sweep's; "
-                        "the window and batches scale with it)")
-    parser.add_argument("--jobs", type=int, default=1, help="points side by side (default 1)")
+    parser.add_argument("--end-time", type=positive_number("the simulated time of each point in s"), default=None,
+                        help="simulated seconds per point (default: the sweep's; the window and batches scale with it)")
+    parser.add_argument("--jobs", type=positive_count("the points side by side"), default=1,
+                        help="points side by side (default 1)")
     parser.add_argument("--root", default=None, help="folder for runs/ and report/ (default: beside the sweep file, "
                         "a folder of its name)")
     parser.add_argument("--points", default="", help="comma-separated point names to run (default: all); the "
@@ -272,21 +299,25 @@ def main(argv=None):
     parser.add_argument("--cost", choices=("wall", "cpu"), default="wall",
                         help="the plots' cost axis: wall time, or the solver's processor time (fairer when other "
                              "work shared the cores)")
+    add_debug_option(parser)
     args = parser.parse_args(argv)
-    try:
+    with doing("reading the sweep", args.sweep):
         sweep = load_sweep(args.sweep)
-        end_time = args.end_time or sweep["end_time"]
-        root = args.root or os.path.splitext(os.path.abspath(args.sweep))[0]
-        if args.command == "run":
-            points = points_of(sweep, root, [n for n in args.points.split(",") if n])
-            return 0 if run_batch(points, end_time, args.jobs) else 1
+    end_time = sweep["end_time"] if args.end_time is None else args.end_time
+    root = os.path.abspath(args.root or os.path.splitext(os.path.abspath(args.sweep))[0])
+    if os.path.exists(root) and not os.path.isdir(root):
+        raise SweepError(f"--root {root}: a file where the sweep's folder belongs: give a folder")
+    if args.command == "run":
+        names = [n.strip() for n in args.points.split(",") if n.strip()]
+        if args.points.strip() and not names:
+            raise SweepError(f"--points {args.points!r}: no point name: give names from {sweep['path']}")
+        points = points_of(sweep, root, names)
+        for point in points:
+            refuse_foreign_folder(point.case.path)
+        return 0 if run_batch(points, end_time, args.jobs) else 1
+    with doing("reporting the sweep", args.sweep):
         report(sweep, points_of(sweep, root), end_time, os.path.join(root, "report"), args.cost)
-        return 0
-    except (SweepError, BatchError, CaseError, RunError) as e:
-        print(f"pareto.py: {e}", file=sys.stderr)
-        return 2
-    except KeyboardInterrupt:
-        return 130
+    return 0
 
 
 if __name__ == "__main__":

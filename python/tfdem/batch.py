@@ -16,6 +16,8 @@ import time
 import tfdem.run
 from tfdem import outputs
 from tfdem.case import Case
+from tfdem.frontdoor import write_text_atomic
+from tfdem.inputs import positive_count, positive_number
 from tfdem.run import environment
 
 STATUS = "study.status.json"
@@ -52,10 +54,10 @@ class CaseRun:
             return {"state": "new"}
 
     def set_status(self, **values):
+        """Update the status file (written whole: a full disk or a kill leaves the previous one)."""
         status = self.status()
         status.update(values)
-        with open(self.case.file(STATUS), "w") as f:
-            json.dump(status, f, indent=1)
+        write_text_atomic(self.case.file(STATUS), json.dumps(status, indent=1))
 
     def done(self):
         return self.status().get("state") == "done"
@@ -249,6 +251,8 @@ def run_batch(runs, end_time, jobs, poll=2.0, report_every=60.0):
     prepared for another end time is carried on to this one from its last checkpoint (one
     with a checkpoint at or past end_time is done). Interrupted (Ctrl-C, SIGTERM), it stops
     its solvers, which resume from their last checkpoint on the next call."""
+    if not (isinstance(jobs, int) and jobs >= 1):
+        raise BatchError(f"{jobs!r} runs at a time: give a whole number of 1 or more")
     busy = [f"{r.name} (process {r.running_elsewhere()})" for r in runs if r.running_elsewhere()]
     if busy:
         raise BatchError(f"still running from another or a killed batch: {', '.join(busy)}; wait for it, or "
@@ -353,16 +357,14 @@ def variants_command_line(doc, root, variants, make_run, report, default_end_tim
     parser = argparse.ArgumentParser(description=doc, formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = parser.add_subparsers(dest="action", required=True)
     run_parser = sub.add_parser("run")
-    run_parser.add_argument("--end-time", type=float, default=default_end_time)
-    run_parser.add_argument("--jobs", type=int, default=2)
-    run_parser.add_argument("--ranks", type=int, default=1)
+    run_parser.add_argument("--end-time", type=positive_number("the simulated time in s"), default=default_end_time)
+    run_parser.add_argument("--jobs", type=positive_count("the runs side by side"), default=2)
+    run_parser.add_argument("--ranks", type=positive_count("each run's MPI ranks"), default=1)
     run_parser.add_argument("--variants", nargs="+", choices=sorted(variants),
                             default=list(default_variants or variants))
     sub.add_parser("report")
     args = parser.parse_args(argv)
     if args.action == "run":
-        if not args.end_time > 0:
-            parser.error(f"--end-time must be a positive number of seconds, got {args.end_time:g}")
         if not os.path.exists(os.path.join(root, "bed.data")):
             print("pouring the bed (tfdem.packing, packing.yaml)", flush=True)
             print(pour_case(root), flush=True)

@@ -21,16 +21,18 @@ import argparse
 import json
 import math
 import os
-import sys
 
 import numpy
 
 from tfdem.accuracy import scalar_metrics
-from tfdem.batch import BatchError, CaseRun, run_batch
+from tfdem.batch import STATUS, BatchError, CaseRun, run_batch
 from tfdem.bed import PRESSURE, BedOutputs, default_dp_height, pressure_rows, write_bed_probes
 from tfdem.case import Case, CaseError
+from tfdem.frontdoor import add_debug_option, doing, run_command, save_figure_atomic, write_text_atomic
+from tfdem.inputs import non_negative_number, positive_count, positive_number
 from tfdem.outputs import probe_locations
-from tfdem.run import DEFAULT_GAS_LAYOUT, RunError, check_gas_layout, command, prepare_gas, run
+from tfdem.packing import STAMP, verify_stamp
+from tfdem.run import DEFAULT_GAS_LAYOUT, GAS_LAYOUTS, command, prepare_gas, run
 from tfdem.stats import integrated_autocorrelation_time
 
 FIELD_INTERVAL = 0.05       # s: solids-fraction map samples
@@ -66,10 +68,13 @@ class BedRun(CaseRun):
         packed = template.file(template.particles_file())
         if not os.path.isfile(packed):
             raise CaseError(f"{packed}: no packed bed to start from; pour it first: tfdem pack {template.path}")
+        if os.path.exists(packed + STAMP):  # a bed tfdem pack poured: the one it finished
+            verify_stamp(template)
         return packed
 
     def prepare(self, end_time):
         packed = self.packed_bed()
+        refuse_foreign_folder(self.case.path)
         case = Case(self.template).copy_to(self.case.path)
         data = case.particles_file()
         self.set_status(state="prepared", end_time=end_time)
@@ -91,6 +96,16 @@ class BedRun(CaseRun):
     def write_interval(self, end_time):
         """The template's checkpoint interval, or end_time when shorter."""
         return min(float(Case(self.template).control("writeInterval")), end_time)
+
+
+def refuse_foreign_folder(path):
+    """A run's folder is made afresh (the old one removed): refuse one that holds files and is
+    not a run's (no status file), so that nothing of a user's is removed."""
+    if os.path.isfile(path) or os.path.islink(path):
+        raise BatchError(f"{path}: a file where the run's folder belongs: give another --root, or move the file")
+    if os.path.isdir(path) and os.listdir(path) and not os.path.isfile(os.path.join(path, STATUS)):
+        raise BatchError(f"{path}: a folder with files that is not a run's (no {STATUS}): the run would replace "
+                         "it; give a new or empty folder (--root), or remove it yourself")
 
 
 def bed_weight_per_area(case):
@@ -198,7 +213,7 @@ def plot(outputs, s, path):
     axes[2].set_title("solids fraction", fontsize=8)
     fig.colorbar(image, ax=axes[2], fraction=0.08)
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
+    save_figure_atomic(fig, path, dpi=110)
     plt.close(fig)
 
 
@@ -208,50 +223,64 @@ def default_window(end_time):
 
 
 def main(argv=None):
+    return run_command("tfdem stats", _stats, argv, known=(ValueError,))
+
+
+def _arguments(argv):
     parser = argparse.ArgumentParser(prog="tfdem stats", description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
+    seconds = positive_number("a time in s above 0")
     parser.add_argument("case")
-    parser.add_argument("--end-time", type=float, required=True, help="simulated seconds")
-    parser.add_argument("--window", type=float, nargs=2, metavar=("START", "END"),
-                        help="the averaging window, s (default: the last four fifths of the run)")
-    parser.add_argument("--batch", type=float, default=BATCH, help=f"batch-means batches, s (default {BATCH:g})")
-    parser.add_argument("--band", type=float, default=BAND, help=f"Delta p's band, s (default {BAND:g})")
-    parser.add_argument("--dp-height", type=float, default=None,
+    parser.add_argument("--end-time", type=seconds, required=True, help="simulated seconds")
+    parser.add_argument("--window", type=non_negative_number("a time in s (0 or more)"), nargs=2,
+                        metavar=("START", "END"), help="the averaging window, s (default: the last four fifths of "
+                        "the run)")
+    parser.add_argument("--batch", type=seconds, default=BATCH, help=f"batch-means batches, s (default {BATCH:g})")
+    parser.add_argument("--band", type=seconds, default=BAND, help=f"Delta p's band, s (default {BAND:g})")
+    parser.add_argument("--dp-height", type=positive_number("a height in m above 0"), default=None,
                         help="m between the two Delta p rows (default 0.2, or the column when shorter)")
-    parser.add_argument("--ranks", type=int, default=1)
-    parser.add_argument("--gas", default=DEFAULT_GAS_LAYOUT, help="whole (on every rank) or split")
+    parser.add_argument("--ranks", type=positive_count("the run's MPI ranks"), default=1)
+    parser.add_argument("--gas", default=DEFAULT_GAS_LAYOUT, choices=sorted(GAS_LAYOUTS),
+                        help="whole (on every rank) or split")
     parser.add_argument("--root", default=None, help="the run's folder (default CASE/statistics)")
-    args = parser.parse_args(argv)
+    add_debug_option(parser)
+    return parser.parse_args(argv)
+
+
+def _stats(argv):
+    args = _arguments(argv)
     template = os.path.abspath(args.case)
+    if not os.path.isfile(os.path.join(template, "coupling.yaml")):
+        raise CaseError(f"{args.case}: not a case folder (no coupling.yaml): give the folder of a bed case "
+                        "(tfdem new writes one)")
     root = os.path.abspath(args.root or os.path.join(template, "statistics"))
-    try:
-        if not args.end_time > 0:
-            raise CaseError(f"--end-time must be a positive number of seconds, got {args.end_time:g}")
-        check_gas_layout(args.gas)
-        start, end = args.window or default_window(args.end_time)
-        if not 0 <= start < end <= args.end_time + 1e-12:
-            raise CaseError(f"--window {start:g} {end:g}: give 0 <= START < END <= the end time {args.end_time:g}")
-        batch = args.batch
-        if (end - start) / batch < FEWEST_BATCHES:
-            batch = (end - start) / FEWEST_BATCHES
-            print(f"tfdem stats: batches of {batch:g} s (the window holds fewer than {FEWEST_BATCHES} of "
-                  f"{args.batch:g} s)")
-        if args.dp_height is not None:
-            pressure_rows(Case(template), args.dp_height)
-        bed = BedRun("statistics", root, template, args.ranks, args.gas, args.dp_height)
-        if not run_batch([bed], args.end_time, jobs=1):
-            return 1
+    refuse_foreign_folder(root)
+    start, end = args.window or default_window(args.end_time)
+    if not start < end <= args.end_time + 1e-12:
+        raise CaseError(f"--window {start:g} {end:g}: give 0 <= START < END <= the end time {args.end_time:g}")
+    if args.band >= end - start:
+        raise CaseError(f"--band {args.band:g}: Delta p's band must be shorter than the window ({end - start:g} s): "
+                        "give a shorter band or a longer window")
+    batch = args.batch
+    if (end - start) / batch < FEWEST_BATCHES:
+        batch = (end - start) / FEWEST_BATCHES
+        print(f"tfdem stats: batches of {batch:g} s (the window holds fewer than {FEWEST_BATCHES} of "
+              f"{args.batch:g} s)")
+    if args.dp_height is not None:
+        pressure_rows(Case(template), args.dp_height)
+    bed = BedRun("statistics", root, template, args.ranks, args.gas, args.dp_height)
+    if not run_batch([bed], args.end_time, jobs=1):
+        return 1
+    with doing("reading the run's outputs in", root):
         s, outputs = statistics(bed.case, start, end, batch, args.band)
-    except (CaseError, BatchError, RunError, ValueError) as e:
-        print(f"tfdem stats: {e}", file=sys.stderr)
-        return 2
-    except KeyboardInterrupt:
-        return 130
-    with open(os.path.join(root, "bed_statistics.json"), "w") as f:
-        json.dump(s, f, indent=1)
-    plot(outputs, s, os.path.join(root, "bed_statistics.png"))
+    report = os.path.join(root, "bed_statistics.json")
+    with doing("writing", report):
+        write_text_atomic(report, json.dumps(s, indent=1))
+    figure = os.path.join(root, "bed_statistics.png")
+    with doing("plotting", figure):
+        plot(outputs, s, figure)
     print("\n".join(describe(s)))
-    print(f"written: {os.path.join(root, 'bed_statistics.json')}, {os.path.join(root, 'bed_statistics.png')}")
+    print(f"written: {report}, {figure}")
     return 0
 
 

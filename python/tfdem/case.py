@@ -11,8 +11,11 @@ import shutil
 
 import yaml
 
+from tfdem.frontdoor import write_text_atomic
+from tfdem.inputs import InputError, Source, parse_yaml
 
-class CaseError(Exception):
+
+class CaseError(InputError):
     """A case file lacks what is asked of it; the message names the file and the entry."""
 
 
@@ -25,8 +28,7 @@ def _read(path):
 
 
 def _write(path, text):
-    with open(path, "w") as f:
-        f.write(text)
+    write_text_atomic(path, text)
 
 
 def _strip_comments(text):
@@ -379,7 +381,8 @@ class Case:
     # coupling.yaml ------------------------------------------------------------------------
     def coupling(self):
         """coupling.yaml as nested dicts."""
-        return yaml.safe_load(_read(self.file("coupling.yaml"))) or {}
+        path = self.file("coupling.yaml")
+        return parse_yaml(_read(path), path, CaseError) or {}
 
     def coupling_value(self, dotted, default=None):
         node = self.coupling()
@@ -400,17 +403,25 @@ class Case:
         d = self.coupling_value("particles.diameter")
         if d is None:
             raise CaseError(f"{self.file('coupling.yaml')}: no particles.diameter")
-        return sorted(float(x) for x in (d if isinstance(d, list) else [d]))
+        source = Source(self.file("coupling.yaml"), CaseError)
+        return sorted(source.number("particles.diameter", x, 0.0, low_open=True, what="a diameter in m above 0")
+                      for x in (d if isinstance(d, list) else [d]))
+
+    def particle_density(self):
+        """coupling.yaml's particles.density (kg/m^3)."""
+        return Source(self.file("coupling.yaml"), CaseError).number(
+            "particles.density", self.coupling_value("particles.density"), 0.0, low_open=True,
+            what="a density in kg/m^3 above 0")
 
     def particle_properties(self):
         """(diameter, density) of a monodisperse case's coupling.yaml particles section."""
-        diameters, rho = self.particle_diameters(), self.coupling_value("particles.density")
-        if rho is None:
+        diameters = self.particle_diameters()
+        if self.coupling_value("particles.density") is None:
             raise CaseError(f"{self.file('coupling.yaml')}: no particles.density")
         if len(diameters) != 1:
             raise CaseError(f"{self.file('coupling.yaml')}: particles.diameter lists {len(diameters)} sizes;"
                             " this needs a monodisperse case")
-        return diameters[0], float(rho)
+        return diameters[0], self.particle_density()
 
     # DEM -----------------------------------------------------------------------------------
     def dem_script(self):
@@ -463,8 +474,7 @@ class Case:
         text, n = re.subn(r"(?m)^timestep\s+\S+", f"timestep        {dem:.12g}", _read(script))
         if n != 1:
             raise CaseError(f"{script}: expected one 'timestep' command, found {n}")
-        with open(script, "w") as out:
-            out.write(text)
+        _write(script, text)
         if self.coupling_value("dem.coupling_interval") is not None:  # left out, the solver derives it
             self.set_coupling("dem.coupling_interval", int(round(interval)))
         self.set_control(deltaT=f"{gas:.12g}")

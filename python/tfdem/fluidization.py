@@ -32,11 +32,12 @@ import math
 import os
 import re
 
-import yaml
-
 import tfdem.run
 from tfdem import TUTORIALS, outputs, physics, stats
 from tfdem.case import Case, CaseError, _read, _strip_comments
+from tfdem.frontdoor import write_text_atomic
+from tfdem.inputs import InputError, Source, load_yaml, shown
+from tfdem.packing import STAMP, verify_stamp
 
 ANALYSIS_DEFAULTS = {
     "settling": 1.0,          # s: each level is averaged after min(settling, half its hold time)
@@ -48,14 +49,11 @@ ANALYSIS_DEFAULTS = {
 PACKING_SCRIPT = os.path.join(TUTORIALS, "bubbling_bed_packing", "in.pack")
 
 
-class ScheduleError(Exception):
+class ScheduleError(InputError):
     """A schedule file is malformed; the message names the file and the key."""
 
 
-def _positive(path, key, value):
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not value > 0:
-        raise ScheduleError(f"{path}: {key}: expected a positive number, got {value!r}")
-    return value
+SCHEDULE_KEYS = ("levels", "analysis", "packing")
 
 
 class Schedule:
@@ -63,59 +61,51 @@ class Schedule:
 
     def __init__(self, levels, analysis=None, packing=None, path="<schedule>"):
         self.path = path
-        self.levels = [(_positive(path, f"levels[{k}] velocity", u), _positive(path, f"levels[{k}] hold time", t))
+        source = Source(path, ScheduleError)
+        self.levels = [(source.number(f"levels[{k}] velocity", u, 0.0, low_open=True, what="a velocity in m/s above 0"),
+                        source.number(f"levels[{k}] hold time", t, 0.0, low_open=True, what="a time in s above 0"))
                        for k, (u, t) in enumerate(levels)]
         if len(self.levels) < 2:
-            raise ScheduleError(f"{path}: levels: expected at least two [velocity, hold time] pairs")
+            source.fail("levels", "expected at least two [velocity, hold time] pairs")
         settings = dict(ANALYSIS_DEFAULTS)
-        for key, value in (analysis or {}).items():
-            if key not in settings:
-                raise ScheduleError(f"{path}: analysis.{key}: unknown key (known: {', '.join(settings)})")
-            settings[key] = value
+        settings.update(source.mapping("analysis", analysis or {}, ANALYSIS_DEFAULTS))
         if settings["fluidized"] is None:
-            raise ScheduleError(f"{path}: analysis.fluidized: give the velocity (m/s) from which levels"
-                                " make the plateau (about 1.3 x U_mf)")
+            source.fail("analysis.fluidized", "missing: give the velocity (m/s) from which levels make the plateau "
+                        "(about 1.3 x U_mf)")
         for key, value in settings.items():
             if value is not None:
-                _positive(path, f"analysis.{key}", value)
+                settings[key] = source.number(f"analysis.{key}", value, 0.0, low_open=True, what="a number above 0")
         self.settling, self.batch = settings["settling"], settings["batch"]
         self.fluidized, self.fixed_bed_limit = settings["fluidized"], settings["fixed_bed_limit"]
         self.fixed_bed_check = settings["fixed_bed_check"]
         if not any(u >= self.fluidized for u, _ in self.levels):
-            raise ScheduleError(f"{path}: analysis.fluidized: no level at or above {self.fluidized} m/s")
-        if packing is not None and not isinstance(packing, dict):
-            raise ScheduleError(f"{path}: packing: expected a mapping of packing-script variables")
+            source.fail("analysis.fluidized", f"{shown((analysis or {})['fluidized'])}: no level at or above it; "
+                        "give a velocity of the levels (about 1.3 x U_mf)")
+        if packing is not None:
+            source.mapping("packing", packing, what="a mapping of packing-script variables")
+            for key, value in packing.items():
+                if isinstance(value, (list, dict)) or value is None:
+                    source.fail(f"packing.{key}", f"{shown(value)}: give one value (a packing-script variable)")
         self.packing = packing
 
     @classmethod
     def load(cls, path):
-        try:
-            with open(path) as f:
-                data = yaml.safe_load(f) or {}
-        except OSError as e:
-            raise ScheduleError(f"{path}: cannot read ({e.strerror})") from None
-        except yaml.YAMLError as e:
-            raise ScheduleError(f"{path}: not YAML: {e}") from None
-        if not isinstance(data, dict):
-            raise ScheduleError(f"{path}: expected a mapping with 'levels'")
-        unknown = set(data) - {"levels", "analysis", "packing"}
-        if unknown:
-            raise ScheduleError(f"{path}: unknown key(s) {', '.join(sorted(unknown))}"
-                                " (known: levels, analysis, packing)")
+        source = Source(path, ScheduleError)
+        data = source.mapping("", load_yaml(path, ScheduleError), SCHEDULE_KEYS)
         levels = []
-        for k, level in enumerate(data.get("levels") or []):
+        given = source.sequence("levels", source.required("", data, "levels", "[velocity m/s, hold time s] pairs"),
+                                what="a list of [velocity m/s, hold time s] pairs")
+        for k, level in enumerate(given):
             if isinstance(level, dict) and set(level) == {"velocity", "hold"}:
-                level = (level["velocity"], level["hold"])
-            if not isinstance(level, (list, tuple)) or len(level) != 2:
-                raise ScheduleError(f"{path}: levels[{k}]: expected [velocity m/s, hold time s], got {level!r}")
+                level = [level["velocity"], level["hold"]]
+            source.sequence(f"levels[{k}]", level, 2, 2, "[velocity m/s, hold time s]")
             levels.append(tuple(level))
-        analysis = data.get("analysis") or {}
-        if not isinstance(analysis, dict):
-            raise ScheduleError(f"{path}: analysis: expected a mapping")
+        analysis = source.mapping("analysis", data.get("analysis") or {}, ANALYSIS_DEFAULTS)
         packing = data.get("packing")
         if isinstance(packing, dict) and "script" in packing:
             packing = dict(packing)
-            packing["script"] = os.path.join(os.path.dirname(os.path.abspath(path)), packing["script"])
+            script = source.text("packing.script", packing["script"], "the path of a LIGGGHTS packing script")
+            packing["script"] = os.path.join(os.path.dirname(os.path.abspath(path)), script)
         return cls(levels, analysis, packing, path)
 
     def end_time(self):
@@ -205,8 +195,7 @@ def write_velocity_file(case, schedule, set_end_time=False):
     text = ("FoamFile { version 2.0; format ascii; class volVectorField; object U; }\n"
             "dimensions      [0 1 -1 0 0 0 0];\ninternalField   uniform (0 0 0);\nboundaryField\n{\n"
             + "\n".join(lines) + "\n}\n")
-    with open(case.file("0", "U"), "w") as f:
-        f.write(text)
+    write_text_atomic(case.file("0", "U"), text)
 
 
 def packing_command(case, schedule):
@@ -238,8 +227,8 @@ def require_soft_spheres(case):
 
 def prepare_run(source, dest, schedule, runner=tfdem.run.run, set_end_time=False):
     """Copy the case from source to dest (unless they are the same), pack its bed (when the
-    schedule has `packing`), write 0/U and run blockMesh and tfdemFoam there via
-    runner(args, cwd, log_name)."""
+    schedule has `packing`; else a bed tfdem pack poured must match its stamp), write 0/U and
+    run blockMesh and tfdemFoam there via runner(args, cwd, log_name)."""
     case = Case(source)
     require_soft_spheres(case)
     if os.path.abspath(source) != os.path.abspath(dest):
@@ -248,6 +237,8 @@ def prepare_run(source, dest, schedule, runner=tfdem.run.run, set_end_time=False
         runner(packing_command(case, schedule), case.path, "log.packing.screen")
     elif not os.path.exists(case.dem().read_data()):
         raise CaseError(f"{case.dem().read_data()}: no bed, and {schedule.path} has no 'packing'")
+    elif os.path.exists(case.dem().read_data() + STAMP):  # a bed tfdem pack poured: the one it finished
+        verify_stamp(case)
     write_velocity_file(case, schedule, set_end_time)
     runner(["blockMesh"], case.path, "log.blockMesh")
     runner(["tfdemFoam"], case.path, "log.tfdemFoam")

@@ -34,7 +34,8 @@ interval, the lid, the plate's resistance, the probes, the packing. The formulas
 generated files need are written into them, so a value edited there stays the only copy.
 """
 import argparse
-import difflib
+import contextlib
+import copy
 import json
 import math
 import os
@@ -49,6 +50,8 @@ import yaml
 import tfdem.run
 from tfdem import SOURCE_DIR, TUTORIALS
 from tfdem.engines import restitution_of_damping
+from tfdem.frontdoor import add_debug_option, default_mode, doing, run_command, write_file_synced
+from tfdem.inputs import InputError, Source, load_yaml, shown, suggestion
 from tfdem.physics import wen_yu_minimum_fluidization
 
 ONE_LAYER = "one_layer"
@@ -59,21 +62,23 @@ GAS_STEP = 5e-4               # s: the bubbling bed's measured front (bench/READ
 INFLOW_COURANT = 1.0          # the gas step keeps the inflow's U dt / dy at or below this
 PACKED_SOLID_FRACTION = 0.6   # of a poured bed, for the bed height estimate
 LID_OVER_BED = 2.0            # the column should be at least this many packed bed heights tall
+LARGEST_COUNT = 2 ** 31 - 1   # OpenFOAM's 32-bit labels: gas cells and time steps
 MAX_SIZES = 9                 # particle sizes (the pour's templates; in.bed's per-pair variable names)
 FIELDS_TEMPLATE = os.path.join(TUTORIALS, "bubbling_bed", "system")
 
 
-class BedError(Exception):
+class BedError(InputError):
     """bed.yaml is wrong; the message names the key, the value and the fix."""
 
 
+REQUIRED = object()  # a key bed.yaml must give
 SCHEMA = {
-    "box": {"width": None, "height": None, "depth": None},
-    "particles": {"density": None, "sizes": None, "count": 0, "restitution": None, "friction": None,
-                  "wall": {}, "stiffness": 0.0},
+    "box": {"width": REQUIRED, "height": REQUIRED, "depth": REQUIRED},
+    "particles": {"density": REQUIRED, "sizes": REQUIRED, "count": 0, "restitution": REQUIRED,
+                  "friction": REQUIRED, "wall": {}, "stiffness": 0.0},
     "gas": {"density": 1.2, "viscosity": 1.8e-5},
     "inflow": {"velocity": 0.0, "plate": {}, "jets": []},
-    "run": {"end_time": None, "write_interval": None},
+    "run": {"end_time": REQUIRED, "write_interval": REQUIRED},
     "coupling": {"transfer": "averaged", "drag_law": "ergun_wen_yu"},
     "mesh": {"cell_size": 0.0},
     "dem": {"engine": "liggghts", "tangential_restitution": "derived"},
@@ -83,168 +88,187 @@ SIZE_KEYS = ("diameter", "number", "mass_fraction")
 WALL_KEYS = ("restitution", "friction")
 PLATE_KEYS = ("pressure_drop_fraction",)
 JET_KEYS = ("centre", "width", "velocity")
-
-
-def _fix_name(key, valid):
-    near = difflib.get_close_matches(key, valid, n=1)
-    return f" (did you mean '{near[0]}'?)" if near else f"; valid keys: {', '.join(valid)}"
-
-
-def _check_keys(path, where, given, valid):
-    if not isinstance(given, dict):
-        raise BedError(f"{path}: {where}: expected a mapping of {', '.join(valid)}, got {given!r}")
-    for key in given:
-        if key not in valid:
-            raise BedError(f"{path}: {where}.{key}: unknown key{_fix_name(key, list(valid))}")
-
-
-def _number(path, key, value, low=0.0, high=math.inf, low_open=True, high_open=False, what="a number"):
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise BedError(f"{path}: {key}: expected {what}, got {value!r}")
-    ok = (value > low if low_open else value >= low) and (value < high if high_open else value <= high)
-    if not ok:
-        lo, hi = ("(" if low_open else "["), (")" if high_open else "]")
-        raise BedError(f"{path}: {key}: {value!r} is outside {lo}{low:g}, {high:g}{hi} ({what})")
-    return float(value)
+# The solver's own bounds (coupling/src/config.cpp), so that bed.yaml's key is the one named
+GAS_DENSITY = (1e-6, 1e4)       # kg/m^3
+GAS_VISCOSITY = (1e-9, 1e3)     # Pa s
+PARTICLE_DENSITY = (1e-3, 1e5)  # kg/m^3
+DIAMETER = (1e-9, 1.0)          # m
 
 
 def load_bed(path):
     """bed.yaml read and checked, with every default filled in."""
-    try:
-        with open(path) as f:
-            given = yaml.safe_load(f) or {}
-    except OSError as e:
-        raise BedError(f"{path}: cannot read it ({e.strerror})")
-    except yaml.YAMLError as e:
-        raise BedError(f"{path}: not valid YAML ({e})")
-    _check_keys(path, "bed", given, SCHEMA)
+    source = Source(path, BedError)
+    given = source.mapping("", load_yaml(path, BedError), SCHEMA)
     bed = {}
     for section, keys in SCHEMA.items():
-        values = given.get(section, {})
-        _check_keys(path, section, values, keys)
+        values = source.mapping(section, given.get(section, {}), keys)
         bed[section] = {}
         for key, default in keys.items():
-            if key not in values and default is None:
-                raise BedError(f"{path}: {section}.{key}: missing (required; see `tfdem new --help`)")
-            bed[section][key] = values.get(key, default)
-    _check_box(path, bed)
-    _check_particles(path, bed)
-    _check_inflow(path, bed)
-    _check_run(path, bed)
-    _check_dem(path, bed)
+            if key not in values and default is REQUIRED:
+                source.fail(f"{section}.{key}", "missing: it is required (`tfdem new --help` lists the keys)")
+            bed[section][key] = values.get(key, copy.deepcopy(default))
+    _check_box(source, bed)
+    _check_gas(source, bed)
+    _check_particles(source, bed, given["particles"])
+    _check_inflow(source, bed, given.get("inflow", {}))
+    _check_run(source, bed)
+    _check_dem(source, bed)
+    _check_optional(source, bed, given)
     return bed
 
 
-def _check_dem(path, bed):
+def _check_dem(source, bed):
     dem = bed["dem"]
-    if dem["engine"] not in ENGINES:
-        raise BedError(f"{path}: dem.engine: unknown value {dem['engine']!r}{_fix_name(str(dem['engine']), ENGINES)}")
+    source.choice("dem.engine", dem["engine"], ENGINES)
     if dem["tangential_restitution"] == "derived":
         return
     if dem["engine"] != "hard_sphere":
-        raise BedError(f"{path}: dem.tangential_restitution: only the hard-sphere engine takes beta_0 (the soft "
-                       "contacts' tangential damping follows from e_n); set dem.engine: hard_sphere, or leave it out")
-    dem["tangential_restitution"] = _number(path, "dem.tangential_restitution", dem["tangential_restitution"],
-                                            low_open=False, high=1.0, what="the tangential restitution beta_0 in "
-                                            "[0, 1] (seed 001 eq. 20)")
+        source.fail("dem.tangential_restitution", "only the hard-sphere engine takes beta_0 (the soft contacts' "
+                    "tangential damping follows from e_n); set dem.engine: hard_sphere, or leave it out")
+    dem["tangential_restitution"] = source.number(
+        "dem.tangential_restitution", dem["tangential_restitution"], 0.0, 1.0,
+        what="the tangential restitution beta_0 in [0, 1] (seed 001 eq. 20)")
 
 
-def _check_box(path, bed):
+def _check_box(source, bed):
     box = bed["box"]
     for key in ("width", "height"):
-        box[key] = _number(path, f"box.{key}", box[key], what="a length in m")
+        box[key] = source.number(f"box.{key}", box[key], 0.0, low_open=True, what="a length in m")
+    if isinstance(box["depth"], str) and box["depth"] != ONE_LAYER:
+        source.fail("box.depth", f"unknown value {shown(box['depth'])}{suggestion(box['depth'], [ONE_LAYER])}: "
+                    f"give a length in m or '{ONE_LAYER}'")
     if box["depth"] != ONE_LAYER:
-        box["depth"] = _number(path, "box.depth", box["depth"], what=f"a length in m or '{ONE_LAYER}'")
+        box["depth"] = source.number("box.depth", box["depth"], 0.0, low_open=True,
+                                     what=f"a length in m or '{ONE_LAYER}'")
 
 
-def _check_particles(path, bed):
+def _check_gas(source, bed):
+    gas = bed["gas"]
+    gas["density"] = source.number("gas.density", gas["density"], *GAS_DENSITY,
+                                   what=f"the gas density in kg/m^3 ({GAS_DENSITY[0]:g} to {GAS_DENSITY[1]:g}, "
+                                   "the solver's range)")
+    gas["viscosity"] = source.number("gas.viscosity", gas["viscosity"], *GAS_VISCOSITY,
+                                     what=f"the dynamic viscosity in Pa s ({GAS_VISCOSITY[0]:g} to "
+                                     f"{GAS_VISCOSITY[1]:g}, the solver's range; air: 1.8e-5)")
+
+
+def _check_particles(source, bed, given):
     p = bed["particles"]
-    p["density"] = _number(path, "particles.density", p["density"], what="a density in kg/m^3")
-    sizes = p["sizes"]
-    if not isinstance(sizes, list) or not 1 <= len(sizes) <= MAX_SIZES:
-        raise BedError(f"{path}: particles.sizes: expected a list of 1 to {MAX_SIZES} sizes, got {sizes!r}")
+    p["density"] = source.number("particles.density", p["density"], *PARTICLE_DENSITY,
+                                 what=f"a density in kg/m^3 ({PARTICLE_DENSITY[0]:g} to {PARTICLE_DENSITY[1]:g}, "
+                                 "the solver's range)")
+    if p["density"] <= bed["gas"]["density"]:
+        source.fail("particles.density", f"{shown(p['density'])} kg/m^3 is not above the gas density "
+                    f"{bed['gas']['density']:g} kg/m^3: such particles float and make no bed; give the particles' "
+                    "density (glass: 2500)")
+    _check_sizes(source, p)
+    _check_mixture(source, p, given)
+    p["restitution"] = source.number("particles.restitution", p["restitution"], 0.0, 1.0, low_open=True,
+                                     what="the normal restitution e_n in (0, 1]")
+    p["friction"] = source.number("particles.friction", p["friction"], 0.0, what="a friction coefficient >= 0")
+    source.mapping("particles.wall", p["wall"], WALL_KEYS)
+    wall = {"restitution": p["restitution"], "friction": p["friction"], **p["wall"]}
+    wall["restitution"] = source.number("particles.wall.restitution", wall["restitution"], 0.0, 1.0,
+                                        low_open=True, what="the normal restitution e_n in (0, 1]")
+    wall["friction"] = source.number("particles.wall.friction", wall["friction"], 0.0,
+                                     what="a friction coefficient >= 0")
+    p["wall"] = wall
+    if "stiffness" in given:
+        p["stiffness"] = source.number("particles.stiffness", p["stiffness"], 0.0, low_open=True,
+                                       what="k_n in N/m (or leave it out: it is derived)")
+    if p["restitution"] == 1.0 or wall["restitution"] == 1.0:
+        source.fail("particles.restitution", "e_n = 1 (no damping) never lets a bed come to rest in soft-sphere "
+                    "DEM; give the material's e_n (glass: ~0.9)")
+
+
+def _check_sizes(source, p):
+    sizes = source.sequence("particles.sizes", p["sizes"], 1, MAX_SIZES, f"a list of 1 to {MAX_SIZES} sizes")
     for i, size in enumerate(sizes):
-        _check_keys(path, f"particles.sizes[{i}]", size, SIZE_KEYS)
-        if "diameter" not in size:
-            raise BedError(f"{path}: particles.sizes[{i}].diameter: missing (m)")
-        size["diameter"] = _number(path, f"particles.sizes[{i}].diameter", size["diameter"], what="a diameter in m")
+        key = f"particles.sizes[{i}]"
+        source.mapping(key, size, SIZE_KEYS)
+        size["diameter"] = source.number(f"{key}.diameter", source.required(key, size, "diameter", "its diameter in m"),
+                                         *DIAMETER, what=f"a diameter in m ({DIAMETER[0]:g} to {DIAMETER[1]:g})")
     sizes.sort(key=lambda s: s["diameter"])
     for a, b in zip(sizes, sizes[1:]):
         if a["diameter"] == b["diameter"]:
-            raise BedError(f"{path}: particles.sizes: two sizes have diameter {a['diameter']:g}; give each size once")
+            source.fail("particles.sizes", f"two sizes have diameter {a['diameter']:g}; give each size once")
+
+
+def _check_mixture(source, p, given):
+    """Each size's `number`, or each size's `mass_fraction` and particles.count."""
+    sizes = p["sizes"]
     by_number = [("number" in s) for s in sizes]
     by_fraction = [("mass_fraction" in s) for s in sizes]
     if all(by_number) and not any(by_fraction):
         for i, s in enumerate(sizes):
-            s["number"] = int(_number(path, f"particles.sizes[{i}].number", s["number"], what="a particle count"))
+            s["number"] = source.count(f"particles.sizes[{i}].number", s["number"],
+                                       what="a particle count (a whole number of 1 or more)")
+        if "count" in given:
+            source.fail("particles.count", f"{shown(given['count'])}: the sizes' numbers give the count; leave "
+                        "particles.count out (it goes with mass fractions)")
     elif all(by_fraction) and not any(by_number):
         total = 0.0
         for i, s in enumerate(sizes):
-            s["mass_fraction"] = _number(path, f"particles.sizes[{i}].mass_fraction", s["mass_fraction"],
-                                         high=1.0, what="a mass fraction in (0, 1]")
+            s["mass_fraction"] = source.number(f"particles.sizes[{i}].mass_fraction", s["mass_fraction"], 0.0, 1.0,
+                                               low_open=True, what="a mass fraction in (0, 1]")
             total += s["mass_fraction"]
         if abs(total - 1.0) > 1e-9:
-            raise BedError(f"{path}: particles.sizes: the mass fractions sum to {total:g}, not 1")
-        if not p["count"]:
-            raise BedError(f"{path}: particles.count: missing (the number of particles, with the sizes' mass "
-                           "fractions)")
-        p["count"] = int(_number(path, "particles.count", p["count"], what="a particle count"))
+            source.fail("particles.sizes", f"the mass fractions sum to {total:g}, not 1: make them sum to 1")
+        if "count" not in given:
+            source.fail("particles.count", "missing: give the number of particles (with the sizes' mass fractions)")
+        p["count"] = source.count("particles.count", p["count"], what="a particle count (a whole number of 1 or more)")
     else:
-        raise BedError(f"{path}: particles.sizes: give every size a `number`, or every size a `mass_fraction` "
-                       "and particles.count")
-    p["restitution"] = _number(path, "particles.restitution", p["restitution"], high=1.0,
-                               what="the normal restitution e_n in (0, 1]")
-    p["friction"] = _number(path, "particles.friction", p["friction"], low_open=False,
-                            what="a friction coefficient >= 0")
-    _check_keys(path, "particles.wall", p["wall"], WALL_KEYS)
-    wall = {"restitution": p["restitution"], "friction": p["friction"], **p["wall"]}
-    wall["restitution"] = _number(path, "particles.wall.restitution", wall["restitution"], high=1.0,
-                                  what="the normal restitution e_n in (0, 1]")
-    wall["friction"] = _number(path, "particles.wall.friction", wall["friction"], low_open=False,
-                               what="a friction coefficient >= 0")
-    p["wall"] = wall
-    if p["stiffness"]:
-        p["stiffness"] = _number(path, "particles.stiffness", p["stiffness"], what="k_n in N/m")
-    if p["restitution"] == 1.0 or wall["restitution"] == 1.0:
-        raise BedError(f"{path}: particles.restitution: e_n = 1 (no damping) never lets a bed come to rest in "
-                       "soft-sphere DEM; give the material's e_n (glass: ~0.9)")
-    for key in ("density", "viscosity"):
-        bed["gas"][key] = _number(path, f"gas.{key}", bed["gas"][key])
+        source.fail("particles.sizes", "give every size a `number`, or every size a `mass_fraction` and "
+                    "particles.count")
 
 
-def _check_inflow(path, bed):
+def _check_inflow(source, bed, given):
     inflow, box = bed["inflow"], bed["box"]
-    inflow["velocity"] = _number(path, "inflow.velocity", inflow["velocity"], low_open=False,
-                                 what="a superficial velocity in m/s")
-    _check_keys(path, "inflow.plate", inflow["plate"], PLATE_KEYS)
-    if inflow["plate"]:
-        inflow["plate"]["pressure_drop_fraction"] = _number(
-            path, "inflow.plate.pressure_drop_fraction", inflow["plate"].get("pressure_drop_fraction"),
-            high=10.0, what="the plate's pressure drop at U_mf over the bed's weight per area")
-    jets = inflow["jets"]
-    if not isinstance(jets, list):
-        raise BedError(f"{path}: inflow.jets: expected a list of jets, got {jets!r}")
+    inflow["velocity"] = source.number("inflow.velocity", inflow["velocity"], 0.0,
+                                       what="a superficial velocity in m/s")
+    source.mapping("inflow.plate", inflow["plate"], PLATE_KEYS)
+    if "plate" in given:
+        fraction = source.required("inflow.plate", inflow["plate"], "pressure_drop_fraction",
+                                   "the plate's pressure drop at U_mf over the bed's weight per area (e.g. 0.3)")
+        inflow["plate"]["pressure_drop_fraction"] = source.number(
+            "inflow.plate.pressure_drop_fraction", fraction, 0.0, 10.0, low_open=True,
+            what="the plate's pressure drop at U_mf over the bed's weight per area, in (0, 10]")
+    jets = source.sequence("inflow.jets", inflow["jets"], what="a list of jets")
+    what = {"centre": f"the jet's centre x in m, in [0, {box['width']:g}] (the box)",
+            "width": "the jet's width in m, above 0",
+            "velocity": "the jet's superficial velocity in m/s, above 0"}
     for i, jet in enumerate(jets):
-        _check_keys(path, f"inflow.jets[{i}]", jet, JET_KEYS)
-        for key in JET_KEYS:
-            if key not in jet:
-                raise BedError(f"{path}: inflow.jets[{i}].{key}: missing")
-            jet[key] = _number(path, f"inflow.jets[{i}].{key}", jet[key], what="m or m/s")
+        key = f"inflow.jets[{i}]"
+        source.mapping(key, jet, JET_KEYS)
+        for name in JET_KEYS:
+            value = source.required(key, jet, name, what[name])
+            high = box["width"] if name == "centre" else math.inf
+            jet[name] = source.number(f"{key}.{name}", value, 0.0, high, low_open=name != "centre", what=what[name])
         if jet["centre"] - jet["width"] / 2 < -1e-12 or jet["centre"] + jet["width"] / 2 > box["width"] + 1e-12:
-            raise BedError(f"{path}: inflow.jets[{i}]: x = {jet['centre'] - jet['width'] / 2:g} to "
-                           f"{jet['centre'] + jet['width'] / 2:g} m reaches past the box (0 to {box['width']:g} m); "
-                           "move its centre or narrow it")
+            source.fail(key, f"x = {jet['centre'] - jet['width'] / 2:g} to {jet['centre'] + jet['width'] / 2:g} m "
+                        f"reaches past the box (0 to {box['width']:g} m); move its centre or narrow it")
     if jets and inflow["plate"]:
-        raise BedError(f"{path}: inflow.plate: a distributor plate with jets is not made; give one of them")
+        source.fail("inflow.plate", "a distributor plate with jets is not made; give one of them")
     if not jets and inflow["velocity"] == 0.0:
-        raise BedError(f"{path}: inflow.velocity: missing or 0 with no jets: a bed needs gas through its bottom")
+        source.fail("inflow.velocity", "missing or 0 with no jets: a bed needs gas through its bottom")
 
 
-def _check_run(path, bed):
+def _check_run(source, bed):
     r = bed["run"]
-    r["end_time"] = _number(path, "run.end_time", r["end_time"], what="a time in s")
-    r["write_interval"] = _number(path, "run.write_interval", r["write_interval"], high=r["end_time"],
-                                  what="a time in s, at most run.end_time")
+    r["end_time"] = source.number("run.end_time", r["end_time"], 0.0, low_open=True, what="a time in s above 0")
+    r["write_interval"] = source.number("run.write_interval", r["write_interval"], 0.0, r["end_time"],
+                                        low_open=True, what="a time in s, at most run.end_time")
+
+
+def _check_optional(source, bed, given):
+    """mesh.cell_size (derived when left out; given, a length) and the coupling's names (the
+    scene check checks them against the core's lists)."""
+    if "cell_size" in given.get("mesh", {}):
+        bed["mesh"]["cell_size"] = source.number("mesh.cell_size", bed["mesh"]["cell_size"], 0.0, low_open=True,
+                                                 what="the gas cells' size in m (or leave it out: it is derived)")
+    names = {"transfer": "a transfer's name (e.g. averaged)", "drag_law": "a drag law's name (e.g. ergun_wen_yu)"}
+    for key, what in names.items():
+        bed["coupling"][key] = source.text(f"coupling.{key}", bed["coupling"][key], what)
 
 
 def _round_down(value):
@@ -282,14 +306,24 @@ def scene_numbers(bed, stiffness, wall_stiffness, cell, path="bed.yaml"):
                 "--wall-en", repr(p["wall"]["restitution"]), "--json"]
         done = subprocess.run(args, capture_output=True, text=True, env=tfdem.run.environment())
     if done.returncode == 2 or not done.stdout.strip():
-        # the core names the key in the scratch coupling.yaml (with its line): name bed.yaml's
-        message = re.sub(re.escape(config) + r"(:\d+:\d+)?", path, done.stderr.strip().replace("tfdem-scene-check: ", ""))
-        raise BedError(message)
+        raise BedError(_scene_refusal(done.stderr, config, path, stiffness, cell, _fastest_inflow(bed)))
     numbers = json.loads(done.stdout)
     errors = [f"{f['topic']}: {f['text']}" for f in numbers["findings"] if f["level"] == "error"]
     if errors:
         raise BedError(f"{path}: the scene check finds the bed unsound: {'; '.join(errors)}")
     return numbers
+
+
+def _scene_refusal(stderr, config, path, stiffness, cell, velocity):
+    """The scene check's refusal as one line naming bed.yaml: the core names a key of the
+    scratch coupling.yaml (bed.yaml's key of the same name), or an option of the values
+    derived here (then they are listed)."""
+    text = stderr.split("\nusage:", 1)[0].strip().replace("tfdem-scene-check: ", "")
+    if config in text:
+        return re.sub(re.escape(config) + r"(:\d+:\d+)?", path, " ".join(text.split()))
+    return (f"{path}: tfdem-scene-check refuses the values derived from it ({' '.join(text.split()) or 'no output'}): "
+            f"k_n {stiffness:.3g} N/m, gas cells {cell:.3g} m, inflow {velocity:.3g} m/s; check particles.sizes, "
+            "particles.density and the inflow against the solver's ranges")
 
 
 def _hard_sphere_tangential(bed, stiffness, mass):
@@ -342,6 +376,10 @@ def derive(bed, path="bed.yaml"):
     ny = max(1, int(round(box["height"] / dx)))
     dy = box["height"] / ny
     nz = 1 if one_layer or depth < 2 * dx else int(round(depth / dx))
+    if nx * ny * nz > LARGEST_COUNT:
+        raise BedError(f"{path}: box: {box['width']:g} x {box['height']:g} x {depth:g} m makes {nx * ny * nz:.3g} gas "
+                       f"cells ({nx:.3g} x {ny:.3g} x {nz:.3g}), more than OpenFOAM's 32-bit count holds "
+                       f"({LARGEST_COUNT}): give a smaller box or a larger mesh.cell_size")
     out.update(nx=nx, ny=ny, nz=nz, dx=dx, dy=dy, dz=depth / nz)
     why = "mesh.cell_size" if bed["mesh"]["cell_size"] else f"{CELL_DIAMETERS:g} of the largest diameter, seed 000's uniform bed"
     note(f"gas cells {dx:.4g} x {dy:.4g} x {depth / nz:.4g} m ({nx} x {ny} x {nz}): {dx / d_large:.3g} d wide ({why}); "
@@ -383,6 +421,11 @@ def derive(bed, path="bed.yaml"):
     interval = max(1, int(math.ceil(gas_step / longest_dem_step - 1e-9)))
     dt = gas_step / interval
     out.update(dem_step=dt, coupling_interval=interval, gas_step=gas_step)
+    if bed["run"]["end_time"] / gas_step > LARGEST_COUNT:
+        raise BedError(f"{path}: run.end_time: {bed['run']['end_time']:g} s is {bed['run']['end_time'] / gas_step:.3g} "
+                       f"gas steps of {gas_step:.3g} s, more than OpenFOAM's 32-bit time index holds "
+                       f"({LARGEST_COUNT}): give a shorter end time (the gas step is at most {GAS_STEP:g} s, less for "
+                       "a fast inflow: its Courant number)")
     for key in ("end_time", "write_interval"):
         steps = bed["run"][key] / gas_step
         if abs(steps - round(steps)) > 1e-6 * steps:
@@ -811,7 +854,8 @@ distributor
 
 
 ALLRUN = """#!/usr/bin/env bash
-# Generated by tfdem new: packs the bed if there is none (tfdem pack), meshes, runs tfdemFoam.
+# Generated by tfdem new: packs the bed if there is none (tfdem pack), checks the packed bed is
+# the one tfdem pack finished (its stamp), meshes, runs tfdemFoam.
 # Usage: ./Allrun [MPI ranks, default 1]. On several ranks the gas is whole on each or split
 # (decomposePar, -parallel) as tfdem-gas-layout's measured rule has it for the mesh's cells;
 # TFDEM_GAS_LAYOUT=whole or split chooses instead.
@@ -819,7 +863,9 @@ set -euo pipefail
 cd "$(dirname "$0")"
 . "{env}"
 ranks=${{1:-1}}
-[ -f bed.data ] || "$TFDEM_PYTHON" -m tfdem.packing . > log.pack
+case "$ranks" in ''|*[!0-9]*|0|00*) echo "$0: MPI ranks '$ranks': give a whole number of 1 or more" >&2; exit 2 ;; esac
+[ -e bed.data ] || "$TFDEM_PYTHON" -m tfdem.packing . > log.pack
+"$TFDEM_PYTHON" -m tfdem.packing --verify .
 blockMesh > log.blockMesh 2>&1
 solver=(tfdemFoam)
 if [ "$ranks" -gt 1 ]; then
@@ -837,19 +883,18 @@ grep -q "^End" log.tfdemFoam || {{ tail -n 30 log.tfdemFoam; exit 1; }}
 """
 
 ALLCLEAN = """#!/usr/bin/env bash
-# Removes what the run made; keeps the inputs and the packed bed (bed.data; delete it to re-pour).
+# Removes what the run made; keeps the inputs and the packed bed (bed.data and its stamp
+# bed.data.tfdem-packed; delete both to re-pour).
 cd "$(dirname "$0")" || exit 1
 rm -rf tfdem.lock *.tfdem-resume log.tfdemFoam log.blockMesh [1-9]* 0.[0-9]* constant/polyMesh processor* \\
     postProcessing mean_height.txt forces.txt VTK in.bed.resumed
 """
+CASE_MARK = "derived.txt"   # a folder holding it is a case tfdem new wrote, which --force may replace
+TEMPORARY = ".tfdem-new-"  # the case being built: .<name>.tfdem-new-<pid>-<random>
 
 
-def write_case(dest, bed, dv, source=None):
-    """Write the case into `dest` (must not exist)."""
-    if os.path.exists(dest):
-        raise BedError(f"{dest}: exists; give a new folder (nothing was written)")
-    for folder in ("0", "constant", "system"):
-        os.makedirs(os.path.join(dest, folder))
+def case_files(bed, dv, source_text=None):
+    """{path in the case: (text, executable)} of every file of the case."""
     files = {
         "system/blockMeshDict": block_mesh(bed, dv),
         "system/controlDict": control_dict(bed, dv),
@@ -860,8 +905,6 @@ def write_case(dest, bed, dv, source=None):
         f"nu      {_g(bed['gas']['viscosity'] / bed['gas']['density'])};\n",
         "coupling.yaml": coupling_yaml(bed, dv),
         "packing.yaml": packing_yaml(bed, dv),
-        "Allrun": ALLRUN.format(env=os.path.join(SOURCE_DIR, "scripts", "tfdem-env.sh")),
-        "Allclean": ALLCLEAN,
         "derived.txt": "What tfdem new derived, and why:\n" + "".join(f"  {n}\n" for n in dv["notes"]),
     }
     if bed["dem"]["engine"] != "hard_sphere":
@@ -871,29 +914,197 @@ def write_case(dest, bed, dv, source=None):
     if bed["inflow"]["plate"]:
         files["constant/fvOptions"] = fv_options(bed, dv)
     for name in ("fvSchemes", "fvSolution"):
-        shutil.copy(os.path.join(FIELDS_TEMPLATE, name), os.path.join(dest, "system", name))
-    for name, text in files.items():
-        with open(os.path.join(dest, name), "w") as f:
-            f.write(text)
-    for name in ("Allrun", "Allclean"):
-        os.chmod(os.path.join(dest, name), 0o755)
+        with open(os.path.join(FIELDS_TEMPLATE, name)) as f:
+            files[f"system/{name}"] = f.read()
+    if source_text is not None:
+        files["bed.yaml"] = source_text
+    out = {name: (text, False) for name, text in files.items()}
+    out["Allrun"] = (ALLRUN.format(env=os.path.join(SOURCE_DIR, "scripts", "tfdem-env.sh")), True)
+    out["Allclean"] = (ALLCLEAN, True)
+    return out
+
+
+def check_destination(dest, force=False):
+    """The names an existing `dest` holds that --force would replace ([] for a new or empty
+    folder); BedError for an empty name, a file, a folder that is not empty (without force),
+    and a folder --force must not replace (not a case, or one holding the current folder).
+    bed.yaml may be inside it: it is read before the folder is replaced."""
+    if not dest.strip():
+        raise BedError(f"the case name {dest!r} is empty: give the new case's folder (an unset shell variable?)")
+    if os.path.islink(dest) or (os.path.exists(dest) and not os.path.isdir(dest)):
+        raise BedError(f"{dest}: exists and is not a folder: give a new folder for the case")
+    above = os.path.dirname(os.path.abspath(dest))
+    while not os.path.exists(above):
+        above = os.path.dirname(above)
+    if not os.path.isdir(above):
+        raise BedError(f"{dest}: {above} is a file, not a folder: give a path of folders for the case")
+    if not os.path.isdir(dest) or not os.listdir(dest):
+        return []
+    held = sorted(os.listdir(dest))
+    if not force:
+        raise BedError(f"{dest}: exists and is not empty ({_listing(held)}): give a new folder, or --force to "
+                       "replace a case tfdem new wrote (nothing was written)")
+    if CASE_MARK not in held:
+        raise BedError(f"{dest}: --force replaces only a case tfdem new wrote (with its {CASE_MARK}), and this "
+                       f"folder holds {_listing(held)}: give a new folder, or remove it yourself")
+    here, top = os.getcwd(), os.path.abspath(dest)
+    if here == top or here.startswith(top + os.sep):
+        raise BedError(f"{dest}: --force would replace the folder you are in ({here}): run it from outside")
+    return held
+
+
+def _listing(names, shown_names=8):
+    more = f", ... ({len(names)} entries)" if len(names) > shown_names else ""
+    return ", ".join(names[:shown_names]) + more
+
+
+def write_case(dest, bed, dv, source=None, force=False):
+    """Write the case into `dest` whole or not at all: built in a temporary folder beside it,
+    then renamed into place (a failure, a full disk, leaves what was there). `dest` must not
+    exist or be an empty folder; with `force` a case tfdem new wrote there is replaced. Returns
+    the names the replaced folder held ([] when there was none)."""
+    held = check_destination(dest, force)
+    source_text = None
     if source:
-        shutil.copy(source, os.path.join(dest, "bed.yaml"))
+        with doing("reading", source), open(source, encoding="utf-8", errors="replace") as f:
+            source_text = f.read()
+    files = case_files(bed, dv, source_text)
+    parent = os.path.dirname(os.path.abspath(dest))
+    made = _make_parents(parent)
+    temporary = None
+    try:
+        _remove_abandoned(parent, os.path.basename(os.path.abspath(dest)))
+        with doing("making the case's folder in", parent):
+            temporary = tempfile.mkdtemp(dir=parent, prefix=f".{os.path.basename(os.path.abspath(dest))}{TEMPORARY}"
+                                         f"{os.getpid()}-")
+            os.chmod(temporary, default_mode(executable=True))
+        for name, (text, executable) in files.items():
+            path = os.path.join(temporary, name)
+            os.makedirs(os.path.dirname(path), exist_ok=True)
+            with doing("writing", os.path.join(dest, name)):
+                write_file_synced(path, text, default_mode(executable))
+        _put_in_place(temporary, dest, held)
+    except BaseException:
+        if temporary and os.path.isdir(temporary):
+            shutil.rmtree(temporary, ignore_errors=True)
+        for folder in reversed(made):
+            with contextlib.suppress(OSError):
+                os.rmdir(folder)
+        raise
+    return held
+
+
+def _make_parents(parent):
+    """Make the missing folders of `parent`; returns those made, outermost first."""
+    missing = []
+    while parent and not os.path.isdir(parent):
+        missing.append(parent)
+        parent = os.path.dirname(parent)
+    for folder in reversed(missing):
+        os.mkdir(folder)
+    return list(reversed(missing))
+
+
+def _remove_abandoned(parent, name):
+    """Remove the temporary folders of earlier runs for this case whose process is gone (a
+    killed tfdem new)."""
+    prefix = f".{name}{TEMPORARY}"
+    for entry in os.listdir(parent):
+        if not entry.startswith(prefix):
+            continue
+        pid = entry[len(prefix):].split("-", 1)[0]
+        if pid.isdigit() and not _alive(int(pid)):
+            shutil.rmtree(os.path.join(parent, entry), ignore_errors=True)
+
+
+def _alive(pid):
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
+
+
+def _put_in_place(temporary, dest, held):
+    """Rename the built case to dest: over nothing; into an empty folder entry by entry (the
+    folder stays, as someone may be in it); or, when it held files (--force), after moving the
+    old one aside (moved back if the rename fails)."""
+    if os.path.isdir(dest) and not held:
+        _move_into(temporary, dest)
+        return
+    if not held:
+        with doing("putting the case in place at", dest):
+            os.rename(temporary, dest)
+        _sync(os.path.dirname(os.path.abspath(dest)))
+        return
+    aside = temporary + ".replaced"
+    with doing("moving aside the folder --force replaces,", dest):
+        os.rename(dest, aside)
+    try:
+        os.rename(temporary, dest)
+    except BaseException:
+        os.rename(aside, dest)
+        raise
+    _sync(os.path.dirname(os.path.abspath(dest)))
+    shutil.rmtree(aside, ignore_errors=True)
+
+
+def _move_into(temporary, dest):
+    """Move the built case's entries into the empty folder dest; on a failure the entries
+    moved are taken out again, leaving it empty."""
+    moved = []
+    try:
+        for name in sorted(os.listdir(temporary)):
+            with doing("putting the case in place at", os.path.join(dest, name)):
+                os.rename(os.path.join(temporary, name), os.path.join(dest, name))
+            moved.append(name)
+    except BaseException:
+        for name in moved:
+            path = os.path.join(dest, name)
+            if os.path.isdir(path):
+                shutil.rmtree(path, ignore_errors=True)
+            else:
+                with contextlib.suppress(OSError):
+                    os.remove(path)
+        raise
+    os.rmdir(temporary)
+    _sync(dest)
+
+
+def _sync(folder):
+    fd = os.open(folder, os.O_RDONLY)
+    try:
+        os.fsync(fd)
+    except OSError:
+        pass
+    finally:
+        os.close(fd)
 
 
 def main(argv=None):
+    return run_command("tfdem new", _new, argv)
+
+
+def _new(argv):
     parser = argparse.ArgumentParser(prog="tfdem new", description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("case", help="the new case's folder (must not exist)")
+    parser.add_argument("case", help="the new case's folder (must not exist, or be empty)")
     parser.add_argument("--from", dest="source", required=True, help="the bed's YAML")
+    parser.add_argument("--force", action="store_true",
+                        help="replace CASE when it is a case tfdem new wrote (it says what the folder held)")
+    add_debug_option(parser)
     args = parser.parse_args(argv)
-    try:
+    check_destination(args.case, args.force)
+    with doing("reading", args.source):
         bed = load_bed(args.source)
+    with doing("deriving the case from", args.source):
         dv = derive(bed, args.source)
-        write_case(args.case, bed, dv, args.source)
-    except BedError as e:
-        print(f"tfdem new: {e}", file=sys.stderr)
-        return 2
+    with doing("writing the case", args.case):
+        held = write_case(args.case, bed, dv, args.source, force=args.force)
+    if held:
+        print(f"tfdem new: --force: replaced {args.case}, which held {_listing(held)}")
     print(f"tfdem new: wrote {args.case}. What it derived, and why (also in {args.case}/derived.txt):")
     for line in dv["notes"]:
         print(f"  {line}")

@@ -4,6 +4,8 @@ import re
 import subprocess
 
 from tfdem import BUILD_DIR, SOURCE_DIR
+from tfdem.case import CaseError
+from tfdem.frontdoor import run_command, write_text_atomic
 from tfdem.outputs import times
 
 
@@ -79,10 +81,10 @@ def start(args, cwd, log_name, ranks=1, gas=DEFAULT_GAS_LAYOUT):
 def write_decompose_dict(case_path, split):
     """system/decomposeParDict: simple decomposition into split = (nx, ny, nz)."""
     nx, ny, nz = split
-    with open(os.path.join(case_path, "system", "decomposeParDict"), "w") as out:
-        out.write("FoamFile { version 2.0; format ascii; class dictionary; object decomposeParDict; }\n"
-                  f"numberOfSubdomains {nx * ny * nz};\nmethod          simple;\n"
-                  f"coeffs          {{ n ({nx} {ny} {nz}); }}\n")
+    write_text_atomic(os.path.join(case_path, "system", "decomposeParDict"),
+                      "FoamFile { version 2.0; format ascii; class dictionary; object decomposeParDict; }\n"
+                      f"numberOfSubdomains {nx * ny * nz};\nmethod          simple;\n"
+                      f"coeffs          {{ n ({nx} {ny} {nz}); }}\n")
 
 
 def split_times(case_path):
@@ -136,26 +138,37 @@ def prepare_gas(case_path, ranks, gas=DEFAULT_GAS_LAYOUT):
         decompose(case_path, ranks)
 
 
+USAGE = "usage: python3 -m tfdem.run decompose CASE RANKS(>= 2) | reconstruct CASE"
+
+
 def main(argv=None):
     """python3 -m tfdem.run decompose CASE RANKS: split a case's gas over RANKS ranks, for
     `mpirun -np RANKS tfdemFoam -parallel` (a split checkpoint re-decomposed for the new count);
     python3 -m tfdem.run reconstruct CASE: a split checkpoint made whole, for a whole or
     serial run."""
-    import sys
-    args = sys.argv[1:] if argv is None else argv
-    usage = "usage: python3 -m tfdem.run decompose CASE RANKS(>= 2) | reconstruct CASE"
-    try:
-        if len(args) == 3 and args[0] == "decompose" and args[2].isdigit() and int(args[2]) >= 2:
-            decompose(args[1], int(args[2]))
-            print(f"gas split on {args[2]} ranks")
-        elif len(args) == 2 and args[0] == "reconstruct":
-            print("newest time reconstructed" if reconstruct(args[1]) else "nothing to reconstruct")
-        else:
-            sys.exit(usage)
-    except RunError as e:
-        sys.exit(f"tfdem.run: {e}")
+    return run_command("tfdem.run", _run, argv)
+
+
+def _run(argv):
+    args = [a for a in argv if a != "--debug"]
+    if len(args) == 3 and args[0] == "decompose":
+        if not (args[2].isdigit() and int(args[2]) >= 2):
+            raise CaseError(f"RANKS {args[2]!r}: give a whole number of 2 or more ({USAGE})")
+        _case_folder(args[1])
+        decompose(args[1], int(args[2]))
+        print(f"gas split on {args[2]} ranks")
+    elif len(args) == 2 and args[0] == "reconstruct":
+        _case_folder(args[1])
+        print("newest time reconstructed" if reconstruct(args[1]) else "nothing to reconstruct")
+    else:
+        raise CaseError(f"{' '.join(args) or 'no arguments'}: {USAGE}")
     return 0
 
 
+def _case_folder(path):
+    if not os.path.isdir(os.path.join(path, "system")):
+        raise CaseError(f"{path}: not a case folder (no system/): give the case's folder")
+
+
 if __name__ == "__main__":
-    main()
+    raise SystemExit(main())

@@ -106,13 +106,13 @@ def check_tiny_sweep(checks):
     proc = subprocess.run(["/usr/bin/python3", PARETO, "run", path, "--root", root], env=environment(),
                           stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     checks.true("a misspelt point key is named with the nearest one",
-                proc.returncode == 2 and "unknown key 'refine_y' (did you mean 'refine'?)" in proc.stdout)
+                proc.returncode == 2 and "points.coarse.refine_y: unknown key (did you mean 'refine'?)" in proc.stdout)
     yaml.safe_dump(dict(sweep, points={"reference": {}, "coarse": {"dem_time_step": -1}}), open(path, "w"))
     proc = subprocess.run(["/usr/bin/python3", PARETO, "run", path, "--root", root], env=environment(),
                           stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     checks.true("a negative DEM step is named with what is expected",
-                proc.returncode == 2 and "point coarse: dem_time_step must be a positive number of seconds, got -1"
-                in proc.stdout)
+                proc.returncode == 2 and "points.coarse.dem_time_step: -1 is not above 0: give a positive number of "
+                "seconds" in proc.stdout)
 
 
 def main():

@@ -328,8 +328,9 @@ def main():
     # packing.yaml: its settings, an unknown key named, a missing count refused
     write(os.path.join(case_dir, "packing.yaml"), "count: 100\nmass_fraction_small: 0.25\n")
     check("packing.yaml read", packing_settings(case) == {"count": 100, "mass_fraction_small": 0.25})
-    for text, expected in (("count: 100\nmas_fraction_small: 0.2\n", "unknown key 'mas_fraction_small'"),
-                           ("seed: 15485863\n", "no 'count'")):
+    for text, expected in (("count: 100\nmas_fraction_small: 0.2\n",
+                            "mas_fraction_small: unknown key (did you mean 'mass_fraction_small'?)"),
+                           ("seed: 15485863\n", "count: missing")):
         write(os.path.join(case_dir, "packing.yaml"), text)
         try:
             packing_settings(case)

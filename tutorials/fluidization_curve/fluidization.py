@@ -20,31 +20,38 @@ import sys
 
 from tfdem import fluidization
 from tfdem.case import CaseError
-from tfdem.run import RunError
+from tfdem.frontdoor import add_debug_option, doing, run_command
 
 import plot
 
 
 def main(argv=None):
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    return run_command("fluidization.py", _fluidization, argv, known=(ValueError,))
+
+
+def _fluidization(argv):
+    parser = argparse.ArgumentParser(prog="fluidization.py", description=__doc__.splitlines()[0])
     parser.add_argument("levels", nargs="?", help="YAML file of levels (default: CASE/levels.yaml)")
     parser.add_argument("--case", default=".", help="case directory, run in place (default: .)")
     parser.add_argument("--set-end-time", action="store_true",
                         help="set system/controlDict's endTime to the sum of the hold times")
     parser.add_argument("--report-only", action="store_true",
                         help="do not run: report the finished run of the case")
+    add_debug_option(parser)
     args = parser.parse_args(argv)
+    if not os.path.isfile(os.path.join(args.case, "coupling.yaml")):
+        raise CaseError(f"--case {args.case}: not a case folder (no coupling.yaml): give the case's folder")
     levels = args.levels or os.path.join(args.case, "levels.yaml")
-    try:
-        schedule = fluidization.Schedule.load(levels)
-        if not args.report_only:
-            print(f"{args.case}: {len(schedule.levels)} levels, {schedule.end_time():g} s simulated"
-                  f" (packing, blockMesh, tfdemFoam; logs in {os.path.join(args.case, 'log.*')})", flush=True)
+    schedule = fluidization.Schedule.load(levels)
+    if not args.report_only:
+        print(f"{args.case}: {len(schedule.levels)} levels, {schedule.end_time():g} s simulated"
+              f" (packing, blockMesh, tfdemFoam; logs in {os.path.join(args.case, 'log.*')})", flush=True)
+        with doing("running the levels of", levels):
             fluidization.prepare_run(args.case, args.case, schedule, set_end_time=args.set_end_time)
+    with doing("reporting the run of", args.case):
         plot.report(args.case, schedule)
-    except (fluidization.ScheduleError, CaseError, RunError, ValueError, OSError) as e:
-        sys.exit(f"fluidization.py: {e}")
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

@@ -12,7 +12,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 from tfdem import fluidization  # noqa: E402
-from tfdem.case import CaseError  # noqa: E402
+from tfdem.frontdoor import add_debug_option, run_command, save_figure_atomic  # noqa: E402
 
 
 def report(case, schedule):
@@ -36,20 +36,24 @@ def report(case, schedule):
     plt.ylabel("pressure drop (Pa)")
     plt.legend(fontsize=7)
     plt.tight_layout()
-    plt.savefig(os.path.join(case, "fluidization_curve.png"), dpi=120)
+    save_figure_atomic(plt.gcf(), os.path.join(case, "fluidization_curve.png"), dpi=120)
+    plt.close()
     print("wrote fluidization_curve.png")
 
 
 def main(argv=None):
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    return run_command("plot.py", _plot, argv, known=(ValueError,))
+
+
+def _plot(argv):
+    parser = argparse.ArgumentParser(prog="plot.py", description=__doc__.splitlines()[0])
     parser.add_argument("levels", nargs="?", help="YAML file of levels (default: CASE/levels.yaml)")
     parser.add_argument("--case", default=".", help="case directory of the finished run (default: .)")
+    add_debug_option(parser)
     args = parser.parse_args(argv)
-    try:
-        report(args.case, fluidization.Schedule.load(args.levels or os.path.join(args.case, "levels.yaml")))
-    except (fluidization.ScheduleError, CaseError, ValueError, OSError) as e:
-        sys.exit(f"plot.py: {e}")
+    report(args.case, fluidization.Schedule.load(args.levels or os.path.join(args.case, "levels.yaml")))
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())
