@@ -1,5 +1,5 @@
 // tfdem-dem-replay: the DEM part of a coupled run alone. It runs the same DEM script in the
-// same way the coupler does (LIGGGHTS in-process, `run N pre no post no` per coupling
+// same way the coupler does (LIGGGHTS in-process, `run N post no` per coupling
 // interval) with the particle fluid forces that `tfdemFoam -recordForces` wrote, so the
 // particles go through the same steps and contacts without the gas or the coupling. Prints
 // its wall time and the sum of particle coordinates that tfdemFoam prints at its end.

@@ -48,11 +48,11 @@ class DemInstance : public ParticleEngine {
   DemInstance &operator=(const DemInstance &) = delete;
 
   std::string name() const override { return "LIGGGHTS"; }
+  std::string key() const override { return "liggghts"; }
   // Advance `seconds` as a whole number of DEM steps (the coupler checks at start that the gas
   // step is one)
   void advance(double seconds, bool sample_contacts) override;
-  // Advance `steps` DEM steps (LIGGGHTS `run`; set-up only the first time and after a
-  // restart file was written). With `sample_contacts`, the fix records every particle's
+  // Advance `steps` DEM steps (LIGGGHTS `run`, set up every time). With `sample_contacts`, the fix records every particle's
   // contact force and N_c at the last step. With no particles and no insertion fix there is
   // nothing to advance (and LIGGGHTS 3.8.0 stops with "Atom types must start from 1"): only
   // the DEM clock moves on.
@@ -146,7 +146,6 @@ class DemInstance : public ParticleEngine {
   std::unique_ptr<DemConsole> console_;
   LAMMPS_NS::LAMMPS *lmp_ = nullptr;
   LAMMPS_NS::FixTfdemCoupling *fix_ = nullptr;
-  bool set_up_ = false;
   std::vector<dem_script::OutputFile> outputs_;
   std::vector<std::string> unresumable_outputs_;
 };

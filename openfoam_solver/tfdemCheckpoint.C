@@ -145,7 +145,12 @@ Foam::word Foam::TfdemCheckpoint::newestGoodBefore(const word& before) const
             (
                 readText(directory(marked[i])/markerName), marked[i]/markerName
             );
-            if (!m.legacy() && tfdem::changed_files(m, runTime_.globalPath()).empty())
+            if
+            (
+                !m.legacy()
+             && tfdem::manifest_problems(m, std::stod(marked[i]), marked[i] + "/" + restartName).empty()
+             && tfdem::changed_files(m, runTime_.globalPath()).empty()
+            )
             {
                 return marked[i];
             }
@@ -205,8 +210,9 @@ Foam::TfdemCheckpoint::TfdemCheckpoint(TfdemTime& runTime)
         FatalErrorInFunction
             << "the checkpoint at t = " << start << " s is incomplete (" << dir
             << " has no " << markerName << ": the run was stopped while writing it)."
-            << " Delete " << dir << " (and processor*/" << start << ") and start from the"
-            << " time before" << exit(FatalError);
+            << " Fix: tfdem resume <case> moves it aside (into incomplete/) and sets the case"
+            << " to resume from the newest checkpoint; or delete " << dir << " (and processor*/"
+            << start << ") and start from the time before" << exit(FatalError);
     }
     const instantList times = runTime.times();
     const scalar first = times.size() > 1 ? times[1].value() : runTime.value();
@@ -264,6 +270,25 @@ void Foam::TfdemCheckpoint::readStart(const wordList& marked)
             << "the checkpoint marker cannot be read: " << e.what() << ". "
             << fallback(start).c_str() << exit(FatalError);
     }
+    std::string wrong;
+    if (TfdemRanks::rank() == 0)
+    {
+        for
+        (
+            const std::string& p
+          : tfdem::manifest_problems(start_, runTime_.value(), start + "/" + restartName)
+        )
+        {
+            wrong += "\n    " + p;
+        }
+    }
+    stopIfAny
+    (
+        wrong,
+        "the checkpoint marker " + marker + " holds entries that cannot be so (edited or"
+        " damaged)",
+        "Resuming from it would run from a state it does not describe. " + fallback(start)
+    );
     // A checkpoint written split over M ranks and resumed split over N != M: reconstructPar
     // and decomposePar replaced its processor*/ files by fields made from them, which its
     // hashes do not cover (a serial or whole run reads fields made from them beside them)
@@ -378,6 +403,7 @@ tfdem::DemResume Foam::TfdemCheckpoint::demResume() const
 {
     tfdem::DemResume r;
     r.step = start_.dem_step;
+    r.engine = start_.engine;
     r.time = start_.time;
     if (start_.dem_restart)
     {
@@ -421,7 +447,8 @@ void Foam::TfdemCheckpoint::verify
             << " resumes at step " << std::to_string(dem.step()).c_str() << " (t = " << demTime
             << " s) but the checkpoint was written at step "
             << std::to_string(start_.dem_step).c_str() << ", t = " << runTime_.timeName()
-            << " s" << exit(FatalError);
+            << " s: the marker or the restart file was changed. "
+            << fallback(runTime_.timeName()).c_str() << exit(FatalError);
     }
     if
     (
@@ -432,8 +459,9 @@ void Foam::TfdemCheckpoint::verify
         FatalErrorInFunction
             << directory(runTime_.timeName())/restartName << " holds " << totals.count
             << " particles of " << totals.mass << " kg; the checkpoint was written with "
-            << label(start_.particles) << " particles of " << start_.particle_mass << " kg"
-            << exit(FatalError);
+            << label(start_.particles) << " particles of " << start_.particle_mass << " kg:"
+            << " the marker or the restart file was changed. "
+            << fallback(runTime_.timeName()).c_str() << exit(FatalError);
     }
 }
 
@@ -592,6 +620,7 @@ void Foam::TfdemCheckpoint::write
         m.time = runTime_.value();
         m.dem_restart = demRestart;
         m.dem_step = dem.step();
+        m.engine = dem.key();
         m.particles = totals.count;
         m.particle_mass = totals.mass;
         m.removed_particles = totals.removedCount;

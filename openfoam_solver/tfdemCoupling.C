@@ -175,6 +175,18 @@ void Foam::TfdemCoupling::startDem(const vector& g)
     // Files by their names in coupling.yaml: the case is the working directory (TfdemCase)
     const tfdem::DemResume resume = checkpoint_.demResume();
     const tfdem::DemResume* resumed = checkpoint_.resuming() ? &resume : nullptr;
+    const std::string engine =
+        config_.engine == tfdem::Engine::HardSphere ? "hard_sphere" : "liggghts";
+    if (resumed && !resume.engine.empty() && resume.engine != engine)
+    {
+        FatalErrorInFunction
+            << "the checkpoint at t = " << mesh_.time().timeName() << " s was written by the "
+            << resume.engine.c_str() << " engine (its marker's engine entry) but "
+            << config_.file.c_str() << " has dem.engine: " << engine.c_str() << ". Fix: resume"
+            << " it with dem.engine: " << resume.engine.c_str() << ", or start afresh with "
+            << engine.c_str() << " (delete the time folders after the first)"
+            << exit(FatalError);
+    }
     if (config_.engine == tfdem::Engine::HardSphere)
     {
         if (TfdemRanks::count() > 1)
@@ -303,10 +315,6 @@ void Foam::TfdemCoupling::evolve()
     {
         FatalErrorInFunction
             << "at t = " << runTime.value() << " s, " << dem_->name().c_str() << ": " << e.what()
-            << (config_.engine == tfdem::Engine::HardSphere
-              ? ". Fix: a longer TC time (dem.hard_sphere.elastic_within) keeps dense clusters"
-                " from collapsing; or run the bed with dem.engine: liggghts (soft spheres)"
-              : "")
             << exit(FatalError);
     }
     tfdemFailure::enter(tfdemFailure::Phase::coupling, runTime.value());

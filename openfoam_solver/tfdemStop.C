@@ -29,7 +29,7 @@ void handler(int signal)
 
 void Foam::tfdemStop::install()
 {
-    for (const int signal : {SIGTERM, SIGUSR1})
+    for (const int signal : {SIGTERM, SIGINT, SIGUSR1})
     {
         struct sigaction action;
         std::memset(&action, 0, sizeof action);
@@ -62,5 +62,11 @@ int Foam::tfdemStop::signal()
 
 const char* Foam::tfdemStop::signalName()
 {
-    return agreedSignal == SIGTERM ? "SIGTERM" : agreedSignal == SIGUSR1 ? "SIGUSR1" : "a signal";
+    switch (agreedSignal)
+    {
+        case SIGTERM: return "SIGTERM";
+        case SIGINT: return "SIGINT";
+        case SIGUSR1: return "SIGUSR1";
+        default: return "a signal";
+    }
 }

@@ -1,11 +1,11 @@
 # Source this file to run TFDEM's programs and the OpenFOAM/LIGGGHTS tools by hand:
 #   . scripts/tfdem-env.sh
-# It puts build/ on PATH and sets what Debian's OpenFOAM needs (WM_PROJECT_DIR).
+# It puts build/ and scripts/bin/ on PATH and sets what Debian's OpenFOAM needs (WM_PROJECT_DIR).
 TFDEM_ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 export TFDEM_ROOT
 export TFDEM_BUILD="${TFDEM_BUILD:-$TFDEM_ROOT/build}"
 export WM_PROJECT_DIR=/usr/share/openfoam
-export PATH="$TFDEM_BUILD/openfoam_solver:$TFDEM_BUILD/liggghts_fixes:$TFDEM_BUILD/coupling:$PATH"
+export PATH="$TFDEM_ROOT/scripts/bin:$TFDEM_BUILD/openfoam_solver:$TFDEM_BUILD/liggghts_fixes:$TFDEM_BUILD/coupling:$PATH"
 # Python scripts use Debian's python3 (matplotlib, numpy, yaml from apt) and the tfdem
 # package in python/.
 export TFDEM_PYTHON=/usr/bin/python3

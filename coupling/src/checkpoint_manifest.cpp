@@ -2,6 +2,7 @@
 
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -67,7 +68,9 @@ std::string format_manifest(const CheckpointManifest &m) {
       << "particles        " << m.particles << ";\n"
       << "particleMass     " << m.particle_mass << ";\n"
       << "removedParticles " << m.removed_particles << ";\n"
-      << "removedMass      " << m.removed_mass << ";\n"
+      << "removedMass      " << m.removed_mass << ";\n";
+  if (!m.engine.empty()) out << "engine           " << m.engine << ";\n";
+  out
       << "layout           " << m.layout << ";\n"
       << "ranks            " << m.ranks << ";\n"
       << "writeFormat      " << m.write_format << ";\n"
@@ -126,6 +129,8 @@ CheckpointManifest parse_manifest(const std::string &text, const std::string &fi
         m.removed_particles = whole(w[0]);
       } else if (key == "removedMass") {
         m.removed_mass = real(w[0]);
+      } else if (key == "engine") {
+        m.engine = w[0];
       } else if (key == "layout") {
         m.layout = w[0];
       } else if (key == "ranks") {
@@ -147,6 +152,58 @@ CheckpointManifest parse_manifest(const std::string &text, const std::string &fi
     throw std::invalid_argument(file + ": not a TFDEM checkpoint marker (no time and demStep entries; empty or " +
                                 "cut short?)");
   return m;
+}
+
+std::vector<std::string> manifest_problems(const CheckpointManifest &m, double folder_time,
+                                           const std::string &restart_path) {
+  std::vector<std::string> problems;
+  const auto refuse = [&problems](const std::string &entry, const std::string &value, const std::string &why) {
+    problems.push_back(entry + ": " + value + ": " + why);
+  };
+  const auto text = [](double v) {
+    std::ostringstream out;
+    out.precision(17);
+    out << v;
+    return out.str();
+  };
+  if (std::abs(m.time - folder_time) > 1e-9 * std::max(1.0, std::abs(folder_time)))
+    refuse("time", text(m.time), "not the time of its folder, " + text(folder_time) + " s");
+  if (m.dem_step < 0) refuse("demStep", std::to_string(m.dem_step), "a step count cannot be negative");
+  if (m.particles < 0) refuse("particles", std::to_string(m.particles), "a count cannot be negative");
+  if (!(m.particle_mass >= 0)) refuse("particleMass", text(m.particle_mass), "a mass cannot be negative");
+  if (m.particles == 0 && m.particle_mass != 0)
+    refuse("particleMass", text(m.particle_mass), "no particles weigh nothing");
+  if (m.particles > 0 && !(m.particle_mass > 0))
+    refuse("particleMass", text(m.particle_mass), std::to_string(m.particles) + " particles weigh more");
+  if (m.removed_particles < 0)
+    refuse("removedParticles", std::to_string(m.removed_particles), "a count cannot be negative");
+  if (!(m.removed_mass >= 0)) refuse("removedMass", text(m.removed_mass), "a mass cannot be negative");
+  if (m.removed_particles == 0 && m.removed_mass != 0)
+    refuse("removedMass", text(m.removed_mass), "no particles removed weigh nothing");
+  if (!m.engine.empty() && m.engine != "liggghts" && m.engine != "hard_sphere")
+    refuse("engine", m.engine, "the engines are liggghts and hard_sphere");
+  if (!m.legacy()) {
+    bool listed = false;
+    for (const auto &f : m.files) listed = listed || f.path == restart_path;
+    if (m.dem_restart != listed)
+      refuse("demRestart", m.dem_restart ? "true" : "false",
+             std::string(listed ? "its files list" : "its files do not list") + " the DEM restart file " +
+                 restart_path);
+  }
+  if (!m.dem_restart && m.particles > 0)
+    refuse("demRestart", "false", "a bed of " + std::to_string(m.particles) +
+                                      " particles resumes from its DEM restart file (none only for a bed emptied "
+                                      "through its outlets)");
+  if (!m.layout.empty() && m.layout != "serial" && m.layout != "whole" && m.layout != "split")
+    refuse("layout", m.layout, "the gas layouts are serial, whole and split");
+  if (m.ranks < 1) refuse("ranks", std::to_string(m.ranks), "a run has at least one rank");
+  if (m.layout == "serial" && m.ranks != 1)
+    refuse("ranks", std::to_string(m.ranks), "a serial run has one rank");
+  if (!m.write_format.empty() && m.write_format != "ascii" && m.write_format != "binary")
+    refuse("writeFormat", m.write_format, "OpenFOAM writes ascii or binary");
+  if (!m.write_format.empty() && (m.write_precision < 1 || m.write_precision > 30))
+    refuse("writePrecision", std::to_string(m.write_precision), "OpenFOAM writes 1 to 30 digits");
+  return problems;
 }
 
 std::vector<std::string> changed_files(const CheckpointManifest &m, const std::string &root) {

@@ -311,7 +311,7 @@ drag::Gas read_gas(ConfigSection &section) {
 // A positive length in metres under `key` (0 when absent): a bare number, since a unit such as
 // '1 cm' or a multiple of the diameter would be read as something else.
 double read_length(ConfigSection &section, const std::string &key) {
-  if (!section.has(key)) return 0.0;
+  if (!section.given(key)) return 0.0;
   const std::string text = section.text(key, "");
   double value = 0.0;
   std::size_t used = 0;
@@ -337,7 +337,7 @@ double read_length(ConfigSection &section, const std::string &key) {
 // mesh's).
 std::array<int, 3> read_block(ConfigSection &section, const std::string &key) {
   std::array<int, 3> block{1, 1, 1};
-  if (!section.has(key)) return block;
+  if (!section.given(key)) return block;
   const std::vector<double> values = section.number_list(key, 1, 1e6);
   bool whole = values.size() == 3;
   for (double v : values) whole = whole && v == std::floor(v);
@@ -384,6 +384,11 @@ HardSphereOptions read_hard_sphere(ConfigSection &section) {
   o.wall_restitution = wall.number_table("restitution", own(o.restitution), 0, 1);
   o.wall_tangential_restitution = wall.number_table("tangential_restitution", own(o.tangential_restitution), 0, 1);
   o.wall_friction = wall.number_table("friction", own(o.friction), 0, 1e3);
+  for (auto [where, values] : {std::pair{&section, &o.restitution}, std::pair{&wall, &o.wall_restitution}})
+    if (std::any_of(values->begin(), values->end(), [](double e) { return e == 0; }))
+      where->report("restitution", "e_n = 0 leaves a pair that collided touching and at rest against each other, "
+                                   "which binary collisions cannot part (each later contact is a collision at zero "
+                                   "gap, without end): give e_n above 0 (glass on glass 0.9-0.97)");
   for (const auto &[key, values] : {std::pair{"restitution", &o.wall_restitution},
                                     std::pair{"tangential_restitution", &o.wall_tangential_restitution},
                                     std::pair{"friction", &o.wall_friction}})
@@ -433,7 +438,7 @@ CouplingConfig parse_coupling_config(const std::string &file, const std::string 
   if (c.engine == Engine::Liggghts) {
     c.dem_script = dem.text("script", "", true);
     // optional: the solver derives it as deltaT / the DEM step (which must be whole); given, it is checked
-    c.coupling_interval = dem.has("coupling_interval") ? dem.integer("coupling_interval", 1, 1, 1000000) : 0;
+    c.coupling_interval = dem.given("coupling_interval") ? dem.integer("coupling_interval", 1, 1, 1000000) : 0;
     refuse("particles", "hard_sphere");
     refuse("hard_sphere", "hard_sphere");
   } else {

@@ -19,7 +19,9 @@
 namespace tfdem::hard_sphere {
 namespace {
 
-constexpr char kMagic[16] = "TFDEM-HS-RST-1\n";
+// Version 2 adds the neighbour lists (a version 1 file resumes with lists built anew)
+constexpr char kMagic[16] = "TFDEM-HS-RST-2\n";
+constexpr char kMagicWithoutLists[16] = "TFDEM-HS-RST-1\n";
 
 // A table of one value (every pair / every type) or `count` values, checked
 std::vector<double> table(const std::vector<double> &values, std::size_t count, const std::string &what,
@@ -41,6 +43,61 @@ void get(std::istream &in, T &value) {
   in.read(reinterpret_cast<char *>(&value), sizeof value);
 }
 
+template <typename T>
+void put_vector(std::ostream &out, const std::vector<T> &values) {
+  put(out, static_cast<std::uint64_t>(values.size()));
+  out.write(reinterpret_cast<const char *>(values.data()), static_cast<std::streamsize>(values.size() * sizeof(T)));
+}
+
+// A vector of at most `most` values (a damaged size must not allocate without bound)
+template <typename T>
+void get_vector(std::istream &in, std::vector<T> &values, std::uint64_t most) {
+  std::uint64_t count = 0;
+  get(in, count);
+  if (!in || count > most) {
+    in.setstate(std::ios::failbit);
+    return;
+  }
+  values.resize(count);
+  in.read(reinterpret_cast<char *>(values.data()), static_cast<std::streamsize>(count * sizeof(T)));
+}
+
+void put_lists(std::ostream &out, const EventFlight::NeighbourLists &lists) {
+  put(out, static_cast<char>(lists.built));
+  put(out, lists.capacity);
+  put(out, lists.skin);
+  for (int a = 0; a < 3; ++a) {
+    put(out, lists.cells[a]);
+    put(out, lists.width[a]);
+  }
+  put_vector(out, lists.anchor);
+  for (const std::vector<int> *v : {&lists.partners, &lists.degree, &lists.head, &lists.next, &lists.previous,
+                                    &lists.cell})
+    put_vector(out, *v);
+  put_vector(out, lists.contact);
+}
+
+EventFlight::NeighbourLists get_lists(std::istream &in, std::uint64_t particles) {
+  EventFlight::NeighbourLists lists;
+  char built = 0;
+  get(in, built);
+  lists.built = built != 0;
+  get(in, lists.capacity);
+  get(in, lists.skin);
+  for (int a = 0; a < 3; ++a) {
+    get(in, lists.cells[a]);
+    get(in, lists.width[a]);
+  }
+  const std::uint64_t slots = particles * static_cast<std::uint64_t>(std::max(lists.capacity, 0));
+  get_vector(in, lists.anchor, particles);
+  get_vector(in, lists.partners, slots);
+  get_vector(in, lists.degree, particles);
+  get_vector(in, lists.head, std::max<std::uint64_t>(64, 8 * particles));
+  for (std::vector<int> *v : {&lists.next, &lists.previous, &lists.cell}) get_vector(in, *v, particles);
+  get_vector(in, lists.contact, slots);
+  return lists;
+}
+
 std::string synced(const std::string &path) {
   const int fd = ::open(path.c_str(), O_RDONLY);
   if (fd < 0 || ::fsync(fd) != 0) {
@@ -50,6 +107,25 @@ std::string synced(const std::string &path) {
   }
   ::close(fd);
   return "";
+}
+
+// Every position, velocity and spin a finite number, else the particles named by id (what is
+// not finite would stop the event search on a floating-point exception)
+void check_finite(const data_file::Atoms &atoms, const std::string &file) {
+  std::ostringstream bad;
+  int count = 0;
+  for (std::size_t i = 0; i < atoms.id.size(); ++i)
+    for (const auto &[what, values] : {std::pair{"position", &atoms.position}, std::pair{"velocity", &atoms.velocity},
+                                       std::pair{"spin", &atoms.spin}}) {
+      const double *v = values->data() + 3 * i;
+      if (std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2])) continue;
+      if (++count <= 10) bad << "\n  id " << atoms.id[i] << ": " << what << " (" << v[0] << " " << v[1] << " " << v[2] << ")";
+      break;
+    }
+  if (count)
+    throw std::runtime_error("dem.particles: " + file + ": " + std::to_string(count) +
+                             " particle(s) with a position, velocity or spin that is not a finite number:" +
+                             bad.str() + "\nFix: give them finite values in the data file");
 }
 
 }  // namespace
@@ -92,7 +168,7 @@ HardSphereEngine::HardSphereEngine(const HardSphereOptions &options, const std::
                                    const double gravity[3], const DemResume *resume)
     : gravity_{gravity[0], gravity[1], gravity[2]}, contact_gap_(options.contact_gap), move_(options.move) {
   if (resume && !resume->restart_file.empty()) {
-    read_restart(resume->restart_file, options);
+    read_restart(*resume, options);
   } else {
     std::ifstream in(data_file);
     if (!in) throw std::runtime_error("dem.particles: cannot read '" + data_file + "': " + std::strerror(errno));
@@ -112,6 +188,7 @@ HardSphereEngine::HardSphereEngine(const HardSphereOptions &options, const std::
     // the laws cover the particles' types: a higher type of the header (LIGGGHTS' walls)
     // holds no particle and needs none
     type_count_ = atoms.id.empty() ? atoms.type_count : *std::max_element(atoms.type.begin(), atoms.type.end());
+    check_finite(atoms, data_file);
     std::string outside;
     int outside_count = 0;
     for (std::size_t i = 0; i < atoms.id.size(); ++i)
@@ -263,6 +340,7 @@ bool HardSphereEngine::write_restart(const std::string &path) {
       put(out, distance);
     }
     for (const double reach : flight_.wall_reach()) put(out, reach);
+    put_lists(out, flight_.lists());
     out.write(kMagic, sizeof kMagic);  // the end: a file cut short lacks it
     out.close();
     if (!out) throw std::runtime_error("the hard-sphere restart file '" + partial + "' could not be written: " +
@@ -272,15 +350,16 @@ bool HardSphereEngine::write_restart(const std::string &path) {
   if (!unsynced.empty()) throw std::runtime_error("'" + partial + "' cannot be synced to disk: " + unsynced);
   if (std::rename(partial.c_str(), path.c_str()) != 0)
     throw std::runtime_error("cannot rename '" + partial + "' to '" + path + "': " + std::strerror(errno));
-  flight_.invalidate_lists();  // the next step builds them, as a run resumed from this file does
   return true;
 }
 
-void HardSphereEngine::read_restart(const std::string &path, const HardSphereOptions &options) {
+void HardSphereEngine::read_restart(const DemResume &resume, const HardSphereOptions &options) {
+  const std::string &path = resume.restart_file;
   std::ifstream in(path, std::ios::binary);
   char magic[sizeof kMagic];
   in.read(magic, sizeof magic);
-  if (!in || std::memcmp(magic, kMagic, sizeof kMagic) != 0)
+  const bool with_lists = in && std::memcmp(magic, kMagic, sizeof kMagic) == 0;
+  if (!with_lists && (!in || std::memcmp(magic, kMagicWithoutLists, sizeof kMagic) != 0))
     throw std::runtime_error("'" + path + "' is not a hard-sphere engine's restart file (a LIGGGHTS checkpoint? "
                              "resume it with dem.engine: liggghts)");
   std::uint64_t n = 0;
@@ -326,10 +405,17 @@ void HardSphereEngine::read_restart(const std::string &path, const HardSphereOpt
   }
   std::vector<double> reach(6 * n);
   for (double &r : reach) get(in, r);
+  EventFlight::NeighbourLists lists;
+  if (with_lists) lists = get_lists(in, n);
   in.read(magic, sizeof magic);
-  if (!in || std::memcmp(magic, kMagic, sizeof kMagic) != 0)
+  if (!in || std::memcmp(magic, with_lists ? kMagic : kMagicWithoutLists, sizeof kMagic) != 0)
     throw std::runtime_error("'" + path + "' is cut short: it ends before its " + std::to_string(n) + " particles");
   flight_.restore_tolerated(std::move(pairs), std::move(reach));
+  try {
+    flight_.restore_lists(std::move(lists));
+  } catch (const std::invalid_argument &e) {
+    throw std::runtime_error("'" + path + "' is damaged: " + e.what());
+  }
   flight_.set_clock(clock);
 }
 

@@ -14,8 +14,17 @@ namespace {
 // skin (a thicker skin lists more partners to scan at each prediction, a thinner one makes
 // particles leave their anchor's sphere, and renew their lists, more often)
 constexpr double kSkinDiameters = 0.2;
+// A tolerated contact is taken a millionth of its distance closer than the spheres are (and a
+// sphere sunk into a wall a millionth of its gap nearer the wall): touching at exactly their
+// distance, a packing's network of contacts would collide at one instant without end once
+// gravity moves the bed (every contact at zero gap, each collision closing the next); this gap
+// puts the collisions at distinct times, which then run their course
+constexpr double kToleratedGap = 1e-6;
 // A particle list's room beyond the most partners found at a full build
 constexpr int kSpareFraction = 2, kLeastSpare = 8;
+// Below this many collisions a particle in a flow step, running out of them says the bound is
+// low, not that the bed collapsed (the bubbling beds' lift measures up to some hundred)
+constexpr long kFewCollisions = 1000;
 // The event of leaving the anchor's sphere (walls are -1 ... -6)
 constexpr int kLeavesAnchor = -7;
 
@@ -59,7 +68,7 @@ void EventFlight::add(const Vec3 &x, const Vec3 &v, const Vec3 &w, double r, dou
   impulse.push_back({});
   last_collision.push_back(-std::numeric_limits<double>::infinity());
   reach_.insert(reach_.end(), 6, r);
-  lists_built_ = false;
+  lists_.built = false;
 }
 
 void EventFlight::remove(std::vector<std::size_t> indices) {
@@ -89,7 +98,7 @@ void EventFlight::remove(std::vector<std::size_t> indices) {
     }
     tolerated_.swap(kept);
   }
-  lists_built_ = false;
+  lists_.built = false;
 }
 
 void EventFlight::restore_tolerated(std::unordered_map<std::uint64_t, double> pairs, std::vector<double> reach) {
@@ -98,7 +107,29 @@ void EventFlight::restore_tolerated(std::unordered_map<std::uint64_t, double> pa
                                 " wall reaches for " + std::to_string(size()) + " particles");
   tolerated_ = std::move(pairs);
   reach_ = std::move(reach);
-  lists_built_ = false;
+  lists_.built = false;
+}
+
+void EventFlight::restore_lists(NeighbourLists lists) {
+  const std::size_t n = size();
+  std::size_t cells = 1;
+  for (const int c : lists.cells) cells *= static_cast<std::size_t>(std::max(c, 0));
+  const auto index_ok = [](const std::vector<int> &v, long high) {
+    return std::all_of(v.begin(), v.end(), [high](int k) { return k >= -1 && k < high; });
+  };
+  const bool whole =
+      !lists.built ||
+      (lists.anchor.size() == n && lists.degree.size() == n && lists.capacity >= 0 &&
+       lists.partners.size() == n * static_cast<std::size_t>(lists.capacity) &&
+       lists.contact.size() == lists.partners.size() && lists.head.size() == cells && lists.next.size() == n &&
+       lists.previous.size() == n && lists.cell.size() == n && index_ok(lists.partners, static_cast<long>(n)) &&
+       index_ok(lists.head, static_cast<long>(n)) && index_ok(lists.next, static_cast<long>(n)) &&
+       index_ok(lists.previous, static_cast<long>(n)) && index_ok(lists.cell, static_cast<long>(cells)) &&
+       std::all_of(lists.degree.begin(), lists.degree.end(), [&](int d) { return d >= 0 && d <= lists.capacity; }));
+  if (!whole)
+    throw std::invalid_argument("EventFlight::restore_lists: the neighbour lists do not fit " + std::to_string(n) +
+                                " particles");
+  lists_ = std::move(lists);
 }
 
 EventFlight::Overlaps EventFlight::tolerate_overlaps() {
@@ -107,12 +138,12 @@ EventFlight::Overlaps EventFlight::tolerate_overlaps() {
   pack();
   build_lists(0);
   for (int i = 0; i < n; ++i) {
-    for (int k = i * capacity_; k < i * capacity_ + degree_[i]; ++k) {
-      const int j = partners_[k];
+    for (int k = i * lists_.capacity; k < i * lists_.capacity + lists_.degree[i]; ++k) {
+      const int j = lists_.partners[k];
       if (j <= i) continue;
       const double sigma = radius[i] + radius[j], distance = norm(nearest(position[i] - position[j]));
       if (distance >= sigma) continue;
-      tolerated_[pair_key(i, j)] = distance;
+      tolerated_[pair_key(i, j)] = distance * (1 - kToleratedGap);
       ++o.pairs;
       o.deepest = std::max(o.deepest, (sigma - distance) / (2 * std::min(radius[i], radius[j])));
     }
@@ -121,12 +152,12 @@ EventFlight::Overlaps EventFlight::tolerate_overlaps() {
         if (!box_.wall[a][side] || box_.periodic[a]) continue;
         const double gap = side == 0 ? position[i][a] - box_.lower[a] : box_.upper[a] - position[i][a];
         if (gap >= radius[i]) continue;
-        reach_[6 * i + 2 * a + side] = std::max(gap, 0.0);
+        reach_[6 * i + 2 * a + side] = std::max(gap * (1 - kToleratedGap), 0.0);
         ++o.walls;
         o.deepest = std::max(o.deepest, (radius[i] - gap) / (2 * radius[i]));
       }
   }
-  lists_built_ = false;  // built again with the contact distances
+  lists_.built = false;  // built again with the contact distances
   return o;
 }
 
@@ -164,22 +195,22 @@ Vec3 EventFlight::wrapped(Vec3 r) const {
 int EventFlight::cell_of(const Vec3 &x) const {
   int c[3];
   for (int a = 0; a < 3; ++a)
-    c[a] = std::clamp(static_cast<int>(std::floor((x[a] - box_.lower[a]) / width_[a])), 0, cells_[a] - 1);
-  return c[0] + cells_[0] * (c[1] + cells_[1] * c[2]);
+    c[a] = std::clamp(static_cast<int>(std::floor((x[a] - box_.lower[a]) / lists_.width[a])), 0, lists_.cells[a] - 1);
+  return c[0] + lists_.cells[0] * (c[1] + lists_.cells[1] * c[2]);
 }
 
 void EventFlight::link(int i, int cell) {
-  cell_[i] = cell;
-  previous_[i] = -1;
-  next_[i] = head_[cell];
-  if (next_[i] >= 0) previous_[next_[i]] = i;
-  head_[cell] = i;
+  lists_.cell[i] = cell;
+  lists_.previous[i] = -1;
+  lists_.next[i] = lists_.head[cell];
+  if (lists_.next[i] >= 0) lists_.previous[lists_.next[i]] = i;
+  lists_.head[cell] = i;
 }
 
 void EventFlight::unlink(int i) {
-  if (previous_[i] >= 0) next_[previous_[i]] = next_[i];
-  else head_[cell_[i]] = next_[i];
-  if (next_[i] >= 0) previous_[next_[i]] = previous_[i];
+  if (lists_.previous[i] >= 0) lists_.next[lists_.previous[i]] = lists_.next[i];
+  else lists_.head[lists_.cell[i]] = lists_.next[i];
+  if (lists_.next[i] >= 0) lists_.previous[lists_.next[i]] = lists_.previous[i];
 }
 
 double EventFlight::contact_distance(int i, int j) const {
@@ -191,22 +222,22 @@ double EventFlight::contact_distance(int i, int j) const {
 }
 
 void EventFlight::gather(int i, std::vector<int> &out, std::vector<double> &contact) const {
-  const int c = cell_[i];
-  const int ci[3] = {c % cells_[0], (c / cells_[0]) % cells_[1], c / (cells_[0] * cells_[1])};
+  const int c = lists_.cell[i];
+  const int ci[3] = {c % lists_.cells[0], (c / lists_.cells[0]) % lists_.cells[1], c / (lists_.cells[0] * lists_.cells[1])};
   for (int dz = -1; dz <= 1; ++dz)
     for (int dy = -1; dy <= 1; ++dy)
       for (int dx = -1; dx <= 1; ++dx) {
         int cc[3] = {ci[0] + dx, ci[1] + dy, ci[2] + dz};
         bool inside = true;
         for (int a = 0; a < 3; ++a) {
-          if (box_.periodic[a]) cc[a] = (cc[a] + cells_[a]) % cells_[a];
-          inside = inside && cc[a] >= 0 && cc[a] < cells_[a];
+          if (box_.periodic[a]) cc[a] = (cc[a] + lists_.cells[a]) % lists_.cells[a];
+          inside = inside && cc[a] >= 0 && cc[a] < lists_.cells[a];
         }
         if (!inside) continue;
-        for (int j = head_[cc[0] + cells_[0] * (cc[1] + cells_[1] * cc[2])]; j >= 0; j = next_[j]) {
+        for (int j = lists_.head[cc[0] + lists_.cells[0] * (cc[1] + lists_.cells[1] * cc[2])]; j >= 0; j = lists_.next[j]) {
           if (j == i) continue;
-          const Vec3 r = nearest(anchor_[i] - anchor_[j]);
-          const double within = radius[i] + radius[j] + skin_;
+          const Vec3 r = nearest(lists_.anchor[i] - lists_.anchor[j]);
+          const double within = radius[i] + radius[j] + lists_.skin;
           if (dot(r, r) >= within * within) continue;
           out.push_back(j);
           contact.push_back(contact_distance(i, j));
@@ -218,20 +249,20 @@ void EventFlight::build_lists(double now) {
   ++counts_.list_builds;
   const int n = static_cast<int>(size());
   double largest = 0;
-  anchor_.resize(n);
+  lists_.anchor.resize(n);
   for (int i = 0; i < n; ++i) {
     advance_to(i, now);
-    anchor_[i] = motion_[i].x;
+    lists_.anchor[i] = motion_[i].x;
     largest = std::max(largest, radius[i]);
   }
-  lists_built_ = true;
+  lists_.built = true;
   if (n == 0) {  // a bed emptied through its outlets: no lists, no cells
-    degree_.clear();
+    lists_.degree.clear();
     return;
   }
-  skin_ = kSkinDiameters * 2 * largest;
+  lists_.skin = kSkinDiameters * 2 * largest;
   // cells at least as wide as the farthest reach of a listed pair's anchors
-  const double reach = 2 * largest + skin_;
+  const double reach = 2 * largest + lists_.skin;
   for (int a = 0; a < 3; ++a)
     if (box_.periodic[a] && box_.upper[a] - box_.lower[a] < 3 * reach)
       throw std::invalid_argument("EventFlight: a periodic axis " + std::to_string(box_.upper[a] - box_.lower[a]) +
@@ -244,17 +275,17 @@ void EventFlight::build_lists(double now) {
     total = 1;
     for (int a = 0; a < 3; ++a) {
       const double span = box_.upper[a] - box_.lower[a];
-      cells_[a] = std::max(box_.periodic[a] ? 3 : 1, std::min(4096, static_cast<int>(span / cell_reach)));
-      width_[a] = span / cells_[a];
-      total *= cells_[a];
+      lists_.cells[a] = std::max(box_.periodic[a] ? 3 : 1, std::min(4096, static_cast<int>(span / cell_reach)));
+      lists_.width[a] = span / lists_.cells[a];
+      total *= lists_.cells[a];
     }
   }
-  degree_.clear();  // the old lists go: no contact distance to keep in them
-  head_.assign(total, -1);
-  next_.assign(n, -1);
-  previous_.assign(n, -1);
-  cell_.assign(n, 0);
-  for (int i = n - 1; i >= 0; --i) link(i, cell_of(anchor_[i]));  // each cell in index order
+  lists_.degree.clear();  // the old lists go: no contact distance to keep in them
+  lists_.head.assign(total, -1);
+  lists_.next.assign(n, -1);
+  lists_.previous.assign(n, -1);
+  lists_.cell.assign(n, 0);
+  for (int i = n - 1; i >= 0; --i) link(i, cell_of(lists_.anchor[i]));  // each cell in index order
   relax_tolerated();
   std::vector<int> found;
   std::vector<double> contact;
@@ -265,30 +296,30 @@ void EventFlight::build_lists(double now) {
   }
   int most = 0;
   for (int i = 0; i < n; ++i) most = std::max(most, first[i + 1] - first[i]);
-  capacity_ = most + std::max(kLeastSpare, most / kSpareFraction);
-  partners_.assign(static_cast<std::size_t>(n) * capacity_, -1);
-  contact_.assign(static_cast<std::size_t>(n) * capacity_, 0);
-  degree_.assign(n, 0);
+  lists_.capacity = most + std::max(kLeastSpare, most / kSpareFraction);
+  lists_.partners.assign(static_cast<std::size_t>(n) * lists_.capacity, -1);
+  lists_.contact.assign(static_cast<std::size_t>(n) * lists_.capacity, 0);
+  lists_.degree.assign(n, 0);
   for (int i = 0; i < n; ++i) {
-    degree_[i] = first[i + 1] - first[i];
-    std::copy(found.begin() + first[i], found.begin() + first[i + 1], partners_.begin() + i * capacity_);
-    std::copy(contact.begin() + first[i], contact.begin() + first[i + 1], contact_.begin() + i * capacity_);
+    lists_.degree[i] = first[i + 1] - first[i];
+    std::copy(found.begin() + first[i], found.begin() + first[i + 1], lists_.partners.begin() + i * lists_.capacity);
+    std::copy(contact.begin() + first[i], contact.begin() + first[i + 1], lists_.contact.begin() + i * lists_.capacity);
   }
 }
 
 bool EventFlight::renew_list(int i, double now) {
   ++counts_.lists_renewed;
   advance_to(i, now);
-  anchor_[i] = motion_[i].x;
+  lists_.anchor[i] = motion_[i].x;
   unlink(i);
-  link(i, cell_of(anchor_[i]));
-  for (int k = i * capacity_; k < i * capacity_ + degree_[i]; ++k) {  // out of the old partners' lists
-    const int j = partners_[k], begin = j * capacity_, end = begin + degree_[j];
+  link(i, cell_of(lists_.anchor[i]));
+  for (int k = i * lists_.capacity; k < i * lists_.capacity + lists_.degree[i]; ++k) {  // out of the old partners' lists
+    const int j = lists_.partners[k], begin = j * lists_.capacity, end = begin + lists_.degree[j];
     for (int m = begin; m < end; ++m)
-      if (partners_[m] == i) {
-        partners_[m] = partners_[end - 1];
-        contact_[m] = contact_[end - 1];
-        --degree_[j];
+      if (lists_.partners[m] == i) {
+        lists_.partners[m] = lists_.partners[end - 1];
+        lists_.contact[m] = lists_.contact[end - 1];
+        --lists_.degree[j];
         break;
       }
   }
@@ -297,35 +328,36 @@ bool EventFlight::renew_list(int i, double now) {
   found.clear();
   contact.clear();
   gather(i, found, contact);
-  if (static_cast<int>(found.size()) > capacity_) return false;
+  if (static_cast<int>(found.size()) > lists_.capacity) return false;
   for (std::size_t k = 0; k < found.size(); ++k) {
     const int j = found[k];
-    if (degree_[j] == capacity_) return false;
-    partners_[j * capacity_ + degree_[j]] = i;
-    contact_[j * capacity_ + degree_[j]] = contact[k];
-    ++degree_[j];
-    partners_[i * capacity_ + k] = j;
-    contact_[i * capacity_ + k] = contact[k];
+    if (lists_.degree[j] == lists_.capacity) return false;
+    lists_.partners[j * lists_.capacity + lists_.degree[j]] = i;
+    lists_.contact[j * lists_.capacity + lists_.degree[j]] = contact[k];
+    ++lists_.degree[j];
+    lists_.partners[i * lists_.capacity + k] = j;
+    lists_.contact[i * lists_.capacity + k] = contact[k];
   }
-  degree_[i] = static_cast<int>(found.size());
+  lists_.degree[i] = static_cast<int>(found.size());
   return true;
 }
 
 void EventFlight::set_listed_contact(int i, int j, double distance) {
-  for (int k = i * capacity_; k < i * capacity_ + degree_[i]; ++k)
-    if (partners_[k] == j) {
-      contact_[k] = distance;
+  for (int k = i * lists_.capacity; k < i * lists_.capacity + lists_.degree[i]; ++k)
+    if (lists_.partners[k] == j) {
+      lists_.contact[k] = distance;
       return;
     }
 }
 
 void EventFlight::relax_tolerated() {
-  const bool listed = capacity_ > 0 && degree_.size() == size();
+  const bool listed = lists_.capacity > 0 && lists_.degree.size() == size();
   for (auto it = tolerated_.begin(); it != tolerated_.end();) {
     const int i = static_cast<int>(it->first >> 32), j = static_cast<int>(it->first & 0xffffffffu);
     const double distance = norm(nearest(motion_[i].x - motion_[j].x)), sigma = radius[i] + radius[j];
-    const bool parted = distance >= sigma, grown = !parted && distance > it->second;
-    if (grown) it->second = distance;
+    const double closer = distance * (1 - kToleratedGap);
+    const bool parted = closer >= sigma, grown = !parted && closer > it->second;
+    if (grown) it->second = closer;
     if (listed && (parted || grown)) {  // the listed entries hold the old distance
       set_listed_contact(i, j, parted ? sigma : it->second);
       set_listed_contact(j, i, parted ? sigma : it->second);
@@ -339,7 +371,7 @@ void EventFlight::relax_tolerated() {
         if (reach >= radius[i]) continue;
         const Vec3 &x = motion_[i].x;
         const double gap = side == 0 ? x[a] - box_.lower[a] : box_.upper[a] - x[a];
-        reach = std::min(radius[i], std::max(reach, gap));
+        reach = std::min(radius[i], std::max(reach, gap * (1 - kToleratedGap)));
       }
 }
 
@@ -350,14 +382,14 @@ void EventFlight::predict(int i, double now, double end) {
   const Motion &mi = motion_[i];
   const Vec3 xi = mi.x + (now - mi.t) * mi.v;
   const Vec3 &vi = mi.v;
-  for (int k = i * capacity_; k < i * capacity_ + degree_[i]; ++k) {
-    const int j = partners_[k];
+  for (int k = i * lists_.capacity; k < i * lists_.capacity + lists_.degree[i]; ++k) {
+    const int j = lists_.partners[k];
     const Motion &mj = motion_[j];
     const Vec3 r = nearest(xi - (mj.x + (now - mj.t) * mj.v));
     const Vec3 u = vi - mj.v;
     const double b = dot(r, u);
     if (b >= 0) continue;  // moving apart
-    const double sigma = contact_[k];
+    const double sigma = lists_.contact[k];
     const double c = dot(r, r) - sigma * sigma;
     double t = 0;  // touching or overlapping, and approaching: now
     if (c > 0) {
@@ -385,8 +417,8 @@ void EventFlight::predict(int i, double now, double end) {
       }
     }
   {  // leaving the anchor's sphere: |d + v t| = skin / 2
-    const Vec3 d = nearest(xi - anchor_[i]);
-    const double vv = dot(vi, vi), b = dot(d, vi), c = dot(d, d) - 0.25 * skin_ * skin_;
+    const Vec3 d = nearest(xi - lists_.anchor[i]);
+    const double vv = dot(vi, vi), b = dot(d, vi), c = dot(d, d) - 0.25 * lists_.skin * lists_.skin;
     if (vv > 0) {
       const double root = std::sqrt(std::max(b * b - vv * c, 0.0));
       const double t = c >= 0 ? 0 : b > 0 ? -c / (b + root) : (root - b) / vv;
@@ -401,6 +433,27 @@ void EventFlight::predict(int i, double now, double end) {
   std::push_heap(heap_.begin(), heap_.end(), std::greater<Event>());
 }
 
+std::string EventFlight::collapse(int n, double dt, double when, double last_half) const {
+  std::ostringstream what;
+  what << counts_.pair + counts_.wall << " collisions of " << n << " particles within one flow step of " << dt
+       << " s, more than dem.hard_sphere.max_collisions_per_particle (" << max_collisions_per_particle_
+       << ") a particle, at t = " << when << " s";
+  if (last_half <= 1e-9 * dt)
+    what << "; the last half of them at one instant (within " << last_half << " s): a network of spheres "
+         << "colliding at zero gap, each collision closing the next, without end (spheres placed exactly "
+         << "touching, or a packing whose contacts were edited). Fix: leave gaps between the spheres, or pour "
+         << "the bed with tfdem pack";
+  else
+    what << ": inelastic collapse (seed 001 sec. 2.1), collision rates diverging in a dense cluster. Fix: a "
+         << "longer TC time (dem.hard_sphere.elastic_within, now " << elastic_within_ << " s) keeps clusters "
+         << "from collapsing; or run the bed with dem.engine: liggghts (soft spheres)"
+         << (max_collisions_per_particle_ < kFewCollisions
+                 ? "; or, if the bed is only busy, a higher max_collisions_per_particle (a bubbling bed's spheres "
+                   "collide up to some hundred times in a flow step as it lifts)"
+                 : "");
+  return what.str();
+}
+
 FlightCounts EventFlight::fly(double dt) {
   counts_ = {};
   const int n = static_cast<int>(size());
@@ -408,12 +461,13 @@ FlightCounts EventFlight::fly(double dt) {
   count_.assign(n, 0);
   std::fill(impulse.begin(), impulse.end(), Vec3{});
   heap_.clear();
-  if (lists_built_ && degree_.size() == size())
+  if (lists_.built && lists_.degree.size() == size())
     relax_tolerated();
   else
     build_lists(0);
   for (int i = 0; i < n; ++i) predict(i, 0, dt);
   const long limit = max_collisions_per_particle_ * std::max(n, 1);
+  double halfway = -1;  // when half the limit was reached: tells a cascade at one instant
   const CollisionLaw elastic{1, 0, 0};  // TC model: elastic and smooth
   while (!heap_.empty()) {
     std::pop_heap(heap_.begin(), heap_.end(), std::greater<Event>());
@@ -466,13 +520,8 @@ FlightCounts EventFlight::fly(double dt) {
     }
     last_collision[a] = when;
     ++count_[a];
-    if (counts_.pair + counts_.wall > limit) {
-      std::ostringstream what;
-      what << "inelastic collapse: " << counts_.pair + counts_.wall << " collisions of " << n
-           << " particles within one flow step of " << dt << " s (more than " << max_collisions_per_particle_
-           << " a particle), at t = " << when << " s";
-      throw std::runtime_error(what.str());
-    }
+    if (halfway < 0 && counts_.pair + counts_.wall >= limit / 2) halfway = e.time;
+    if (counts_.pair + counts_.wall > limit) throw std::runtime_error(collapse(n, dt, when, e.time - halfway));
     predict(a, e.time, dt);
     if (e.partner >= 0) predict(e.partner, e.time, dt);
   }

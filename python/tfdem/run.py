@@ -14,11 +14,12 @@ class RunError(Exception):
 
 
 def environment():
-    """Environment with build/ on PATH, the package on PYTHONPATH and what Debian's OpenFOAM
-    and Open MPI need (as scripts/tfdem-env.sh)."""
+    """Environment with build/ and scripts/bin/ on PATH, the package on PYTHONPATH and what
+    Debian's OpenFOAM and Open MPI need (as scripts/tfdem-env.sh)."""
     env = dict(os.environ)
     env["WM_PROJECT_DIR"] = "/usr/share/openfoam"
-    env["PATH"] = os.pathsep.join([os.path.join(BUILD_DIR, "openfoam_solver"),
+    env["PATH"] = os.pathsep.join([os.path.join(SOURCE_DIR, "scripts", "bin"),
+                                   os.path.join(BUILD_DIR, "openfoam_solver"),
                                    os.path.join(BUILD_DIR, "liggghts_fixes"),
                                    os.path.join(BUILD_DIR, "coupling"), env.get("PATH", "")])
     env["PYTHONPATH"] = os.pathsep.join(p for p in (os.path.join(SOURCE_DIR, "python"),

@@ -536,9 +536,16 @@ RESTART = [
     ("marker's DEM step edited", marker_edit(r"demStep\s+\d+;", "demStep          150;"),
      ["LIGGGHTS resumes at step 200", "written at step 150"]),
     ("marker's particle count edited", marker_edit(r"particles\s+1;", "particles        2;"),
-     ["holds 1 particles", "written with 2 particles"]),
+     ["holds 1 particles", "written with 2 particles", "The newest earlier checkpoint that verifies is t = 0.01 s"]),
+    ("marker's DEM part switched off", marker_edit(r"demRestart\s+true;", "demRestart       false;"),
+     ["demRestart: false", "its files list the DEM restart file", "edited or damaged",
+      "The newest earlier checkpoint that verifies is t = 0.01 s"]),
+    ("marker's removed count negative", marker_edit(r"removedParticles\s+0;", "removedParticles -3;"),
+     ["removedParticles: -3: a count cannot be negative", "edited or damaged"]),
+    ("marker's engine misspelt", marker_edit(r"engine\s+liggghts;", "engine           liggghts2;"),
+     ["engine: liggghts2: the engines are liggghts and hard_sphere"]),
     ("killed while writing the DEM restart", killed_while_writing,
-     ["the checkpoint at t = 0.02 s is incomplete", "start from the time before"]),
+     ["the checkpoint at t = 0.02 s is incomplete", "tfdem resume <case> moves it aside", "start from the time before"]),
     ("fresh start over checkpoints", restart_fresh_over_checkpoints,
      ["this run starts afresh at t = 0 s but the case holds TFDEM checkpoints up to t = 0.02 s",
       "to resume it, set startFrom latestTime", "foamListTimes -rm"]),
@@ -572,16 +579,29 @@ DEM_ONLY = [  # tfdem-liggghts, the DEM-only runner (packing, benchmarks)
 ]
 DEM_VARS = ["-var", "steps", "10", "-var", "dumpfile", "dump.final", "-var", "weight_fraction", "1"]
 
-def hard_spheres(positions=((0.03, 0.35, 0.01),), box=((0, 0, 0), (0.06, 0.4, 0.02)), edit=None, **laws):
+def hard_spheres(positions=((0.03, 0.35, 0.01),), box=((0, 0, 0), (0.06, 0.4, 0.02)), edit=None, velocities=None,
+                 **laws):
     """The settling case with the hard-sphere engine on bed.data (100 um glass spheres at
-    these centres), its laws changed by `laws`, then coupling.yaml edited by `edit` (old, new)."""
+    these centres, with these velocities), its laws changed by `laws`, then coupling.yaml
+    edited by `edit` (old, new)."""
     def fault(c):
         n = len(positions)
-        write_data_file(os.path.join(c, "bed.data"), box[0], box[1], [1e-4] * n, [2500] * n, list(positions))
+        write_data_file(os.path.join(c, "bed.data"), box[0], box[1], [1e-4] * n, [2500] * n, list(positions),
+                        velocities=list(velocities) if velocities else None)
         use_hard_sphere(c, "bed.data", **{"restitution": 0.9, "tangential_restitution": 0.33, "friction": 0.1, **laws})
         if edit:
             probe.edit(os.path.join(c, "coupling.yaml"), *edit)
     return fault
+
+
+def hard_sphere_checkpoint_resumed_with_liggghts(c):
+    """The hard-sphere settling case run to its end (0.02 s, written), then set to resume it
+    to 0.03 s with coupling.yaml's LIGGGHTS engine."""
+    hard_spheres()(c)
+    code, output, _ = probe.run(["tfdemFoam"], c, "log.hard_sphere")
+    assert code == 0, output[-2000:]
+    shutil.copy(os.path.join(SETTLING, "coupling.yaml"), os.path.join(c, "coupling.yaml"))
+    Case(c).set_control(endTime=0.03, startFrom="latestTime")
 
 
 HARD_SPHERE = [
@@ -601,6 +621,12 @@ HARD_SPHERE = [
     ("laws that do not fit the types", hard_spheres(restitution=[0.9, 0.8, 0.8], wall={"restitution": 0.9, "tangential_restitution": 0.33, "friction": 0.1}),
      ["dem.hard_sphere.restitution does not fit", "3 values"]),
     ("on 2 ranks", hard_spheres(), ["dem.engine: hard_sphere runs on one rank", "without mpirun"], {"ranks": 2}),
+    ("e_n zero", hard_spheres(restitution=0),
+     ["dem.hard_sphere.restitution", "e_n = 0", "cannot part", "give e_n above 0"]),
+    ("a NaN velocity", hard_spheres(velocities=((0, float("nan"), 0),)),
+     ["id 1", "velocity", "not a finite number", "bed.data"]),
+    ("its checkpoint resumed with LIGGGHTS", hard_sphere_checkpoint_resumed_with_liggghts,
+     ["written by the hard_sphere engine", "dem.engine: liggghts", "resume it with dem.engine: hard_sphere"]),
 ]
 
 GROUPS = [("coupling.yaml", CONFIG), ("DEM script and data", DEM), ("gas case", GAS),

@@ -24,19 +24,33 @@ LIGGGHTS runs are verified on, with the same expected values and tolerances:
    (test_blowout's counts for LIGGGHTS).
 5. Restart: 200 spheres blown about in a column (tests/cases/blowout's mesh) run 0.1 s
    straight, and 0.05 s then resumed to 0.1 s: the fields and the engine's restart file at
-   0.1 s byte for byte the same; particles and mass accounted for.
+   0.1 s byte for byte the same; particles and mass accounted for. Stopped by SIGTERM at
+   0.073 s (between the write times 0.05 and 0.1 s) and resumed: exit status 75, the straight
+   run's write times and the stop's, and the same bytes at 0.1 s (the checkpoint keeps the
+   neighbour lists, which decide the events' order).
+6. Beds poured at rest by tfdem pack (3-D, 1500 spheres of 2.5 mm in 4 x 1.5 cm; bidisperse,
+   1.5 and 2.5 mm at 30/70 by mass, 1 cm deep), their gas below U_mf: 0.01 s runs to its end.
+   Their soft pour's overlapping pairs and wall contacts taken as touching exactly where they
+   are collide at one instant without end once gravity moves the bed (the 3-D bed: 15 million
+   collisions at t = 0, stopped as a cascade at one instant); taken a millionth of their
+   distance closer (EventFlight's rule) they collide at distinct times and run their course.
 """
 import math
 import os
 import re
 import shutil
+import signal
+import time
 
 from tfdem import SOURCE_DIR, TUTORIALS
 from tfdem.case import Case, read_data_file
 from tfdem.engines import convert_to_hard_sphere, use_hard_sphere, write_data_file
 from tfdem.fixed_bed import VELOCITIES, FixedBed
 from tfdem.outputs import joined_series, particle_statistics, probes, vtk_particles
+from tfdem.newcase import derive, load_bed, write_case
+from tfdem.packing import pack_case
 from tfdem.physics import SettlingSphere
+from tfdem.run import start
 from tfdem_testlib import Checks, copy_case, run, scratch
 
 SETTLING = os.path.join(TUTORIALS, "settling_particle")
@@ -182,10 +196,60 @@ def restart(checks):
     for name in ("p", "U", "voidFraction", "dem.restart"):
         a, b = straight.file("0.1", name), resumed.file("0.1", name)
         checks.true(f"hard spheres, restart: 0.1/{name} bit for bit", open(a, "rb").read() == open(b, "rb").read())
+    stopped = blowout_bed("hard_sphere_restart_stopped")
+    proc = start(["tfdemFoam"], stopped.path, "log.stopped")
+    while proc.poll() is None and "\nTime = 0.073\n" not in open(stopped.file("log.stopped"), errors="replace").read():
+        time.sleep(0.02)
+    proc.send_signal(signal.SIGTERM)
+    code = proc.wait()
+    stop = re.search(r"stopped at t = (\S+) s", open(stopped.file("log.stopped"), errors="replace").read())
+    checks.true("hard spheres, SIGTERM between writes: exit 75 at a checkpoint", code == 75 and stop is not None,
+                f"(exit {code})")
+    stopped.set_control(startFrom="latestTime")
+    run(["tfdemFoam"], stopped.path, "log.tfdemFoam")
+    times = sorted(float(t) for t in os.listdir(stopped.path) if re.fullmatch(r"0\.[0-9]+", t))
+    checks.true("hard spheres, SIGTERM: the straight run's write times and the stop's",
+                stop is not None and times == sorted([0.05, 0.1, float(stop.group(1))]), f"({times})")
+    for name in ("p", "U", "voidFraction", "dem.restart"):
+        a, b = straight.file("0.1", name), stopped.file("0.1", name)
+        checks.true(f"hard spheres, SIGTERM: 0.1/{name} bit for bit", open(a, "rb").read() == open(b, "rb").read())
     stats = particle_statistics(resumed.path)
     checks.true("hard spheres, restart: 200 particles at the end", stats["particles"][-1] == 200,
                 f"({stats['particles'][-1]:g})")
     checks.close("hard spheres, restart: mass kept", stats["mass"][-1], 200 * 50 * math.pi * 0.0025 ** 3 / 6, 1e-12)
+
+
+POURED = {
+    "3-D": """box: {width: 0.04, height: 0.12, depth: 0.015}
+particles: {density: 2500, sizes: [{diameter: 0.0025, number: 1500}], restitution: 0.9, friction: 0.1}
+""",
+    "bidisperse": """box: {width: 0.04, height: 0.12, depth: 0.01}
+particles:
+  density: 2500
+  count: 1500
+  sizes: [{diameter: 0.0015, mass_fraction: 0.3}, {diameter: 0.0025, mass_fraction: 0.7}]
+  restitution: 0.9
+  friction: 0.1
+""",
+}
+
+
+def poured_at_rest(checks):
+    for name, particles in POURED.items():
+        root = scratch(f"hard_sphere_poured_{name}")
+        source = os.path.join(root, "bed.yaml")
+        with open(source, "w") as f:
+            f.write(particles + "dem: {engine: hard_sphere}\ngas: {density: 1.2, viscosity: 1.8e-5}\n"
+                    "inflow: {velocity: 0.3}\nrun: {end_time: 0.01, write_interval: 0.01}\n")
+        bed = load_bed(source)
+        case = os.path.join(root, "case")
+        write_case(case, bed, derive(bed, source), source)
+        print(pack_case(case, runner=lambda *a, **k: run(*a[:3])))
+        run(["blockMesh"], case, "log.blockMesh")
+        code, output = run(["tfdemFoam"], case, "log.tfdemFoam", expect_success=False)
+        collisions = re.search(r"TFDEM hard spheres: (\d+) pair and (\d+) wall collisions", output)
+        checks.true(f"hard spheres, {name} bed poured at rest: 0.01 s run to its end", code == 0 and collisions,
+                    output[-1500:] if code else "")
 
 
 def main():
@@ -195,6 +259,7 @@ def main():
     bubbling(checks)
     outlet(checks)
     restart(checks)
+    poured_at_rest(checks)
     checks.finish()
 
 

@@ -7,8 +7,15 @@ LIGGGHTS restart file: positions, velocities, spins, contact histories, held flu
 and the same particle statistics and pressure probes once the resumed series are joined.
 Bitwise holds because the checkpoint keeps every value the next step reads (fields at 17
 digits, the superficial flux, the momentum pressure gradient, the held forces) and the DEM
-sets up again after writing its restart file, as a resumed DEM does. Then: a checkpoint
-without its marker (a run killed while writing it) is refused as a start time.
+sets up at every coupling interval, as a resumed DEM does at its first.
+
+Stopped by a signal between write times and resumed, the same holds: the run writes a joint
+checkpoint at the step its ranks agree on and exits 75 (SIGTERM to the one solver; Ctrl-C,
+SIGINT to the process group of scripts/bin/tfdem-solve on 2 ranks with the gas whole; SIGTERM
+to tfdem-solve with the gas split); resumed, it writes the straight run's times (0.1 and 0.2 s,
+counted from the start, not from the stop) and ends at 0.2 s bit for bit as above. A run whose
+end time is off the write grid writes its end (a run can always be carried on from it). Then:
+a checkpoint without its marker (a run killed while writing it) is refused as a start time.
 
 On another rank count (the packed bed at 0.6 m/s, steady, so round-off does not grow): a
 checkpoint written at 0.2 s by 2 ranks with the gas split resumes to 0.4 s on 3 ranks split
@@ -26,15 +33,16 @@ import os
 import re
 import shutil
 import signal
+import subprocess
 import time
 
 from tfdem import TUTORIALS
 from tfdem.case import Case
 from tfdem.outputs import joined_series, probes
-from tfdem.run import RunError, decompose, prepare_gas, run, start
+from tfdem.run import RunError, decompose, environment, prepare_gas, run, start
 from tfdem_testlib import PACKED_BED, Checks, packed_bed_copy, scratch
 
-END_TIME, WRITE_INTERVAL, KILL_AFTER = 0.2, 0.1, 0.15
+END_TIME, WRITE_INTERVAL, KILL_AFTER, STOP_AFTER = 0.2, 0.1, 0.15, 0.123
 
 
 def packed_bed():
@@ -64,6 +72,31 @@ def kill_after(case, ranks, gas, t_kill):
             break
         time.sleep(0.2)
     proc.wait()
+
+
+def stop_after(case, ranks, gas, t_stop, sig):
+    """Run from the start under scripts/bin/tfdem-solve (a session of its own) and send `sig`
+    once the log reaches t_stop: to the solver's process group (SIGINT, as Ctrl-C in a
+    terminal), else to tfdem-solve; returns its exit status."""
+    args = ["tfdem-solve", "log.stopped", str(ranks)] + (["-parallel"] if ranks > 1 and gas == "split" else [])
+    proc = subprocess.Popen(args, cwd=case.path, env=environment(), stdout=subprocess.DEVNULL,
+                            start_new_session=True)
+    log = case.file("log.stopped")
+    while proc.poll() is None:
+        if os.path.isfile(log) and f"\nTime = {t_stop}\n" in open(log, errors="replace").read():
+            if sig == signal.SIGINT:
+                os.killpg(proc.pid, sig)
+            else:
+                proc.send_signal(sig)
+            break
+        time.sleep(0.05)
+    return proc.wait()
+
+
+def written_times(case, ranks, gas):
+    """The time folders a run wrote (of processor0 when the gas is split), as numbers."""
+    root = case.file("processor0") if ranks > 1 and gas == "split" else case.path
+    return sorted(float(name) for name in os.listdir(root) if re.fullmatch(r"[0-9.e+-]+", name) and float(name) > 0)
 
 
 def field_files(case, ranks, gas, time_name):
@@ -99,7 +132,42 @@ def check_ranks(checks, bed, ranks, gas="whole"):
         same = len(a) == len(b) > 0 and all(abs(ta - tb) < 1e-12 and va == vb for (ta, va), (tb, vb) in zip(a, b))
         checks.true(f"{label}: {name} series joined over the restart equals the straight run's", same,
                     f"({len(b)} rows vs {len(a)})")
+    check_stopped(checks, bed, ranks, gas, straight)
     return resumed
+
+
+def check_stopped(checks, bed, ranks, gas, straight):
+    """Stopped by a signal between write times, resumed: the straight run's times and state."""
+    sig = signal.SIGTERM if ranks == 1 or gas == "split" else signal.SIGINT
+    label = f"{ranks} rank(s)" + (f", gas {gas}" if ranks > 1 else "") + f", {signal.Signals(sig).name}"
+    stopped = prepared(f"restart_stopped_{ranks}_{gas}", bed, ranks, gas)
+    code = stop_after(stopped, ranks, gas, STOP_AFTER, sig)
+    text = open(stopped.file("log.stopped"), errors="replace").read()
+    at = re.search(r"TFDEM stop: \S+ received; stopped at t = (\S+) s", text)
+    checks.true(f"{label}: exit status 75 at a checkpoint", code == 75 and at is not None, f"(exit {code})")
+    if not at:
+        return
+    stop_time = float(at.group(1))
+    checks.true(f"{label}: stopped between the write times ({stop_time} s)", 0.1 < stop_time < 0.2)
+    stopped.set_control(startFrom="latestTime")
+    _, output = run(["tfdemFoam"], stopped.path, "log.tfdemFoam", ranks, gas=gas)
+    checks.true(f"{label}: resumed from the stop", f"resuming gas and particles from t = {at.group(1)} s" in output)
+    times = written_times(stopped, ranks, gas)
+    checks.true(f"{label}: wrote the straight run's times and the stop's",
+                times == sorted(written_times(straight, ranks, gas) + [stop_time]), f"({times})")
+    for a, b in zip(field_files(straight, ranks, gas, "0.2"), field_files(stopped, ranks, gas, "0.2")):
+        checks.true(f"{label}: {os.path.relpath(a, straight.path)} bit for bit", same_bytes(a, b))
+    checks.true(f"{label}: DEM state at 0.2 s bit for bit",
+                same_bytes(straight.file("0.2", "dem.restart"), stopped.file("0.2", "dem.restart")))
+
+
+def check_end_written(checks):
+    """An end time off the write grid (0.25 s, writes every 0.1 s) is written."""
+    case = packed_bed_copy("end_off_grid", 0.25)
+    case.set_control(writeInterval=0.1)
+    run(["tfdemFoam"], case.path, "log.tfdemFoam")
+    times = written_times(case, 1, "whole")
+    checks.true("end time 0.25 s off the 0.1 s write grid: written", times == [0.1, 0.2, 0.25], f"({times})")
 
 
 def check_incomplete_checkpoint(checks, case):
@@ -186,6 +254,7 @@ def main():
         check_ranks(checks, bed, 2, "whole")
         check_ranks(checks, bed, 2, "split")
         check_incomplete_checkpoint(checks, resumed)
+        check_end_written(checks)
         expected = check_other_counts(checks)
         check_stop_by_signal(checks, expected, 2, signal.SIGUSR1)
         check_stop_by_signal(checks, expected, 1, signal.SIGTERM)

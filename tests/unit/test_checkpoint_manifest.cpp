@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <functional>
 #include <string>
+#include <vector>
 #include <sys/stat.h>
 
 #include "tfdem/checkpoint_manifest.h"
@@ -108,6 +110,66 @@ TEST(CheckpointManifest, ChangedFilesAreNamed) {
   EXPECT_EQ(changed[0], "0.1/U: 5 bytes, written with 6");
   EXPECT_EQ(changed[1], "0.1/phi: its content changed since it was written (same size, another hash)");
   EXPECT_EQ(changed[2], "0.1/dem.restart: No such file or directory");
+}
+
+
+// Entries that cannot be so, whatever the data: each named by its entry and value; a sound
+// marker (the example, and its emptied-bed form without a restart file) has none.
+std::vector<std::string> problems_of(const CheckpointManifest &m) {
+  return tfdem::manifest_problems(m, 0.1, "0.1/dem.restart");
+}
+
+bool names(const std::vector<std::string> &problems, const std::string &start) {
+  for (const std::string &p : problems)
+    if (p.compare(0, start.size(), start) == 0) return true;
+  return false;
+}
+
+TEST(CheckpointManifest, SoundMarkersHaveNoProblems) {
+  EXPECT_TRUE(problems_of(example()).empty());
+  CheckpointManifest emptied = example();
+  emptied.dem_restart = false;
+  emptied.particles = 0;
+  emptied.particle_mass = 0;
+  emptied.files.pop_back();  // no dem.restart listed
+  EXPECT_TRUE(problems_of(emptied).empty());
+  CheckpointManifest later = example();
+  later.engine = "hard_sphere";
+  later.time = 0.10000000000000007;  // a clock summed over steps, in the folder named 0.1
+  EXPECT_TRUE(problems_of(later).empty());
+}
+
+TEST(CheckpointManifest, EditedEntriesAreNamed) {
+  const auto edited = [](const std::function<void(CheckpointManifest &)> &edit) {
+    CheckpointManifest m = example();
+    edit(m);
+    return problems_of(m);
+  };
+  EXPECT_TRUE(names(edited([](CheckpointManifest &m) { m.dem_restart = false; }), "demRestart: false"));
+  EXPECT_TRUE(names(edited([](CheckpointManifest &m) { m.removed_particles = -3; }), "removedParticles: -3"));
+  EXPECT_TRUE(names(edited([](CheckpointManifest &m) { m.removed_mass = -1e-5; }), "removedMass: -1"));
+  EXPECT_TRUE(names(edited([](CheckpointManifest &m) { m.particles = -1; }), "particles: -1"));
+  EXPECT_TRUE(names(edited([](CheckpointManifest &m) { m.particle_mass = 0; }), "particleMass: 0"));
+  EXPECT_TRUE(names(edited([](CheckpointManifest &m) { m.dem_step = -5; }), "demStep: -5"));
+  EXPECT_TRUE(names(edited([](CheckpointManifest &m) { m.time = 0.2; }), "time: 0.20000000000000001"));
+  EXPECT_TRUE(names(edited([](CheckpointManifest &m) { m.engine = "lammps"; }), "engine: lammps"));
+  EXPECT_TRUE(names(edited([](CheckpointManifest &m) { m.layout = "diagonal"; }), "layout: diagonal"));
+  EXPECT_TRUE(names(edited([](CheckpointManifest &m) { m.ranks = 0; }), "ranks: 0"));
+  EXPECT_TRUE(names(edited([](CheckpointManifest &m) { m.layout = "serial"; }), "ranks: 2"));
+  EXPECT_TRUE(names(edited([](CheckpointManifest &m) { m.write_precision = 0; }), "writePrecision: 0"));
+  EXPECT_TRUE(names(edited([](CheckpointManifest &m) { m.removed_particles = 0; }), "removedMass: 4.1"));
+  EXPECT_TRUE(names(edited([](CheckpointManifest &m) {
+                      m.dem_restart = false;
+                      m.files.pop_back();
+                    }),
+                    "demRestart: false: a bed of 4000 particles"));
+}
+
+TEST(CheckpointManifest, EngineEntryReadsBack) {
+  CheckpointManifest m = example();
+  m.engine = "hard_sphere";
+  EXPECT_EQ(tfdem::parse_manifest(tfdem::format_manifest(m), "m").engine, "hard_sphere");
+  EXPECT_EQ(tfdem::parse_manifest(tfdem::format_manifest(example()), "m").engine, "");
 }
 
 }  // namespace

@@ -152,6 +152,15 @@ TEST(Config, CouplingIntervalLeftOutIsDerivedBySolver) {
   EXPECT_EQ(c.coupling_interval, 0);  // 0: the solver takes deltaT / the DEM step
 }
 
+// Optional keys are known when absent too: a misspelt one is answered with its name
+TEST(Config, MisspeltOptionalKeysAreNamed) {
+  const auto p = problems_of(replaced(kValid, "  coupling_interval: 50", "  coupling_intervall: 50"));
+  ASSERT_EQ(p.size(), 1u);
+  EXPECT_TRUE(contains(p, "dem.coupling_intervall: unknown key (did you mean 'coupling_interval'?)")) << p[0];
+  const auto q = problems_of(replaced(kValid, "    floor: 0.3", "    floor: 0.3\n    diffusion_bandwith: 0.01"));
+  EXPECT_TRUE(contains(q, "diffusion_bandwith: unknown key (did you mean 'diffusion_bandwidth'?)")) << q[0];
+}
+
 const char *kHardSphere = R"(gas:
   density: 1.2
   viscosity: 1.8e-5
@@ -183,6 +192,16 @@ TEST(Config, HardSphereEngine) {
   const CouplingConfig again = parse_coupling_config("described.yaml", describe(c));
   EXPECT_EQ(again.hard_sphere.restitution, c.hard_sphere.restitution);
   EXPECT_EQ(again.hard_sphere.wall_tangential_restitution, std::vector<double>{0.33});
+}
+
+// e_n = 0 is outside what binary collisions can run, for the particles and for the walls
+TEST(Config, HardSphereZeroRestitutionIsRefusedWithItsReason) {
+  const auto p = problems_of(replaced(kHardSphere, "restitution: [[0.97, 0.96], [0.96, 0.95]]", "restitution: 0"));
+  ASSERT_EQ(p.size(), 1u) << p[0];
+  EXPECT_TRUE(contains(p, "dem.hard_sphere.restitution: e_n = 0 leaves a pair that collided touching")) << p[0];
+  const auto q = problems_of(replaced(kHardSphere, "restitution: [0.9, 0.8]", "restitution: [0.9, 0]"));
+  ASSERT_EQ(q.size(), 1u) << q[0];
+  EXPECT_TRUE(contains(q, "dem.hard_sphere.wall.restitution: e_n = 0")) << q[0];
 }
 
 TEST(Config, EachEngineRefusesTheOthersKeys) {

@@ -25,6 +25,7 @@ struct CheckpointManifest {
   double particle_mass = 0;        // kg
   long long removed_particles = 0;  // left through outlets since the start
   double removed_mass = 0;         // kg
+  std::string engine;              // the particle engine that wrote it ("" in earlier markers)
   std::string layout;              // "serial", "whole" or "split" (tfdemFoam's gas layouts)
   int ranks = 1;
   std::string write_format;        // the gas fields' writeFormat and writePrecision
@@ -44,6 +45,12 @@ std::string format_manifest(const CheckpointManifest &manifest);
 
 // Throws std::invalid_argument "file:line: what is wrong" for a damaged or foreign marker.
 CheckpointManifest parse_manifest(const std::string &text, const std::string &file);
+
+// What in a marker cannot be so, whatever the data (a hand edit, a damaged marker): each as
+// "entry: value: why", for the marker of the time folder `folder_time` (s) whose DEM restart
+// file, when it lists one, is `restart_path` (relative to the case).
+std::vector<std::string> manifest_problems(const CheckpointManifest &manifest, double folder_time,
+                                           const std::string &restart_path);
 
 // Each listed file under `root` that is missing or differs from its digest, as
 // "path: what differs" (sizes first: a file cut short is named without reading it whole).

@@ -61,6 +61,12 @@ class ConfigSection {
   // Report keys present but never read, with the nearest read key. Call after all reads.
   void reject_unknown_keys();
   bool has(const std::string &key) const;
+  // Whether an optional key is given, the key known to this section either way (a misspelt
+  // one is answered with its name)
+  bool given(const std::string &key) {
+    known_keys_.push_back(key);
+    return has(key);
+  }
   // Record a problem with `key` found by the caller's own check.
   void report(const std::string &key, const std::string &message) { problem(key, message); }
   // A key that does not belong here, whatever its value: reported with `message`, not again as

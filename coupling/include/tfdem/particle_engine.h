@@ -22,6 +22,7 @@ using OutputSize = std::pair<std::string, std::uint64_t>;
 struct DemResume {
   std::string restart_file;          // the engine's restart file; "" when the bed had emptied
   long long step = 0;                // the engine's step at the checkpoint
+  std::string engine;                // the engine that wrote it (its key(); "" in earlier markers)
   double time = 0;                   // and its simulated time (s)
   std::vector<OutputSize> outputs;   // the engine's output files at the checkpoint
 };
@@ -32,6 +33,9 @@ class ParticleEngine {
 
   // "LIGGGHTS" or "the hard-sphere engine", for messages
   virtual std::string name() const = 0;
+  // Its name as coupling.yaml's dem.engine gives it ("liggghts", "hard_sphere"), which a
+  // checkpoint's marker records
+  virtual std::string key() const = 0;
 
   // Advance `seconds` (one coupling interval, the gas step) with the held fluid forces; with
   // `sample_contacts`, each particle's contact force and N_c at its end are recorded

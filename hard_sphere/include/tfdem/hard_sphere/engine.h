@@ -37,6 +37,7 @@ class HardSphereEngine : public ParticleEngine {
                    const DemResume *resume = nullptr);
 
   std::string name() const override { return "the hard-sphere engine"; }
+  std::string key() const override { return "hard_sphere"; }
   void advance(double seconds, bool sample_contacts) override;
   long long step() const override { return step_; }
   double time() const override { return flight_.clock(); }
@@ -67,7 +68,7 @@ class HardSphereEngine : public ParticleEngine {
 
  private:
   static const double *flat(const std::vector<Vec3> &v) { return &v.data()->x; }
-  void read_restart(const std::string &path, const HardSphereOptions &options);
+  void read_restart(const DemResume &resume, const HardSphereOptions &options);
   void set_laws(const HardSphereOptions &options, const std::string &source);
   void sample_contacts(double seconds);
 

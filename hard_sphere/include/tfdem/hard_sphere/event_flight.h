@@ -37,6 +37,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <unordered_map>
 #include <vector>
 
@@ -99,9 +100,25 @@ class EventFlight {
   const std::unordered_map<std::uint64_t, double> &tolerated() const { return tolerated_; }
   const std::vector<double> &wall_reach() const { return reach_; }
   void restore_tolerated(std::unordered_map<std::uint64_t, double> pairs, std::vector<double> reach);
-  // Build the lists afresh at the next flow step (as a run resumed from here does): every
-  // anchor at its particle
-  void invalidate_lists() { lists_built_ = false; }
+  // The neighbour lists as they stand, and the same restored (a restart): a run resumed with
+  // them takes the straight run's steps bit for bit (the lists decide which events are
+  // predicted and in what order ties fall)
+  struct NeighbourLists {
+    bool built = false;
+    // particle i's partners are partners[i * capacity ...] (degree[i] of them), with each
+    // listed pair's contact distance (R_a + R_b, or less) beside them
+    std::vector<Vec3> anchor;
+    std::vector<int> partners, degree;
+    std::vector<double> contact;
+    int capacity = 0;
+    double skin = 0;
+    // the anchors' cells: cells per axis of width, a doubly linked list of particles per cell
+    int cells[3] = {1, 1, 1};
+    double width[3] = {1, 1, 1};
+    std::vector<int> head, next, previous, cell;
+  };
+  const NeighbourLists &lists() const { return lists_; }
+  void restore_lists(NeighbourLists lists);
   // Open a face of the box (no wall there: an outlet)
   void open(int axis, int side) { box_.wall[axis][side] = false; }
 
@@ -136,6 +153,8 @@ class EventFlight {
   }
   Vec3 wrapped(Vec3 r) const;
   void predict(int i, double now, double end);
+  // The message of a flow step that ran out of collisions, with its likely cause and fix
+  std::string collapse(int n, double dt, double when, double last_half) const;
   void advance_to(int i, double t);
   const CollisionLaw &law(int a, int b) const { return pair_laws_[type[a] * type_count_ + type[b]]; }
 
@@ -157,22 +176,11 @@ class EventFlight {
   // motion_ from position and velocity at time 0, and back
   void pack();
   void unpack();
-  // neighbour lists: particle i's partners are partners_[i * capacity_ ...] (degree_[i] of
-  // them), with each listed pair's contact distance (R_a + R_b, or less) beside them
-  std::vector<Vec3> anchor_;
-  std::vector<int> partners_, degree_;
-  std::vector<double> contact_;
-  int capacity_ = 0;
-  double skin_ = 0;
-  // the anchors' cells: cells_ per axis of width_, a doubly linked list of particles per cell
-  int cells_[3] = {1, 1, 1};
-  double width_[3] = {1, 1, 1};
-  std::vector<int> head_, next_, previous_, cell_;
+  NeighbourLists lists_;
   // tolerated overlaps: pair (i << 32 | j, i < j) -> its contact distance; each sphere's reach
   // towards each of the 6 walls (its radius, or less)
   std::unordered_map<std::uint64_t, double> tolerated_;
   std::vector<double> reach_;
-  bool lists_built_ = false;
   bool periodic_ = false;
   std::vector<Event> heap_;
   FlightCounts counts_;
