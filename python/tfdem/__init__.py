@@ -9,6 +9,7 @@
 - ``tfdem.stats``: time averages with batch-means errors, spectra, fits;
 - ``tfdem.physics``: reference physics with its seed equations (drag law, Ergun, U_mf, the
   settling sphere's ODE);
+- ``tfdem.summary``: a run's own outputs as summary.csv and summary.png (``tfdem summary``);
 - ``tfdem.fixed_bed``, ``tfdem.fluidization``: the fixed-bed (Ergun) and fluidization-curve
   set-ups of the tutorials, for any case built like them (a fluidization curve from a YAML
   file of levels).

@@ -5,6 +5,7 @@ solver wrote). The seed 000 study and the speed-against-error sweeps are such ba
 """
 import argparse
 import json
+import math
 import os
 import re
 import shutil
@@ -236,14 +237,36 @@ def eta_seconds(wall, t, t_start, end):
     return wall * (1.0 - done) / done if done > 0.02 else float("nan")
 
 
+def eta_text(eta, wall):
+    """The ETA, or '?' while unknown, with the reason when the machine is busier than its cores
+    after the first minute (a loaded machine, not a stuck run)."""
+    if eta == eta:
+        return clock(eta)
+    load, cores = os.getloadavg()[0], os.cpu_count() or 1
+    if wall >= 60 and load > cores:
+        return f"? (the machine is loaded: load average {load:.1f} on {cores} cores)"
+    return "?"
+
+
 def print_progress(active, started):
     for r, _ in active:
         t, end = r.progress()
         start_clock, t_start = started[r.name]
         wall = time.monotonic() - start_clock
         eta = eta_seconds(wall, t, t_start, end)
-        print(f"  {r.name:<26} t = {t:8.3f} / {end:g} s   wall {clock(wall)}   ETA "
-              f"{clock(eta) if eta == eta else '?'}", flush=True)
+        print(f"  {r.name:<26} t = {t:8.3f} / {end:g} s   wall {clock(wall)}   ETA {eta_text(eta, wall)}", flush=True)
+
+
+def end_time_change(before, after, done):
+    """What a new end time does to a prepared run: carried on to a later one, or, to an earlier
+    one, done (its last checkpoint is at or past it) or run on to it."""
+    before = float(before) if before is not None else math.nan
+    if not after < before:
+        return f"carried on from {before:g} s to {after:g} s"
+    if done:
+        return (f"end time lowered from {before:g} s to {after:g} s: its last checkpoint is at or past {after:g} s, "
+                "so it is done (what it wrote past that time is kept, and left out of windows ending there)")
+    return f"end time lowered from {before:g} s to {after:g} s: runs on to {after:g} s from its last checkpoint"
 
 
 def run_batch(runs, end_time, jobs, poll=2.0, report_every=60.0):
@@ -266,8 +289,8 @@ def run_batch(runs, end_time, jobs, poll=2.0, report_every=60.0):
             print(f"{r.name}: preparing {r.case.path}", flush=True)
             r.prepare(end_time)
         elif status.get("end_time") != end_time:
-            print(f"{r.name}: carried on from {status.get('end_time')} s to {end_time:g} s", flush=True)
             r.extend(end_time)
+            print(f"{r.name}: {end_time_change(status.get('end_time'), end_time, r.done())}", flush=True)
     pending = [r for r in runs if not r.done()]
     active = []
     previous = signal.signal(signal.SIGTERM, _interrupt)
@@ -279,7 +302,7 @@ def run_batch(runs, end_time, jobs, poll=2.0, report_every=60.0):
     finally:
         for r, proc in active:
             if proc.poll() is None:
-                os.killpg(proc.pid, signal.SIGTERM)
+                stop(proc, getattr(r, "ranks", 1))
                 proc.wait()
                 r.set_status(state="stopped", pid=None)
         signal.signal(signal.SIGTERM, previous)
@@ -287,6 +310,16 @@ def run_batch(runs, end_time, jobs, poll=2.0, report_every=60.0):
 
 def _interrupt(signum, frame):
     raise KeyboardInterrupt
+
+
+def stop(proc, ranks):
+    """Ask a solver to write a checkpoint and stop (openfoam_solver/tfdemStop.H): SIGTERM to the
+    one process, SIGUSR1 to mpirun alone, which forwards it to its ranks once (sent SIGTERM,
+    mpirun kills its ranks within a second, before they can write)."""
+    if ranks > 1:
+        os.kill(proc.pid, signal.SIGUSR1)
+    else:
+        os.killpg(proc.pid, signal.SIGTERM)
 
 
 def _run_pending(pending, active, jobs, poll, report_every):

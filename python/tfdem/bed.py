@@ -5,7 +5,10 @@ and on the row DP_HEIGHT above it (Delta p at 20 cm, seed 000 Fig. 3; another he
 another column), and the coupler's particle statistics.
 
 write_bed_probes() adds the function objects to a case's controlDict; BedOutputs reads what
-they wrote, joined over resumes, as arrays.
+they wrote, joined over resumes, as arrays. Any layout: one layer, a few cells deep or 3-D.
+The maps are sampled at every cell centre and averaged over the depth (the z cells of each
+x, y column); p is sampled at every cell centre of the two rows (across the width and the
+depth), and Delta p is the difference of the two rows' means (cross-section averages).
 """
 import itertools
 import re
@@ -13,7 +16,7 @@ import re
 import numpy
 
 from tfdem.case import CaseError
-from tfdem.outputs import OutputError, joined_series, particle_statistics
+from tfdem.outputs import OutputError, joined_series, particle_statistics, probe_locations
 
 DP_HEIGHT = 0.2  # m: Delta p between the bottom row of cells and the row this far above it
 FIELDS = "studyFields"
@@ -25,17 +28,22 @@ TFM_FIELDS = ("alpha.particles", "Theta.particles")
 GRANULAR_TEMPERATURE = {False: "granularTemperature", True: "Theta.particles"}
 
 
-PLATE_ZONE = "distributor"  # the cell zone of a distributor plate's porous rows (tfdem new)
+# The cell zones below a bed (tfdem new): a distributor plate's porous rows, an empty windbox row
+ZONES_BELOW_BED = ("distributor", "windbox")
 
 
 def _row_span(case):
     """(bottom, highest): the heights of the bed's bottom row of cell centres (the first above
-    the plate's cell zone, when the case has one) and of the column's highest row."""
+    the plate's or the windbox's cell zone, when the case has one) and of the column's highest
+    row."""
     grid = case.grid()
-    try:
-        floor = case.block_bounds(PLATE_ZONE)[1][1]
-    except CaseError:
-        floor = grid.origin[1]
+    floor = grid.origin[1]
+    for zone in ZONES_BELOW_BED:
+        try:
+            floor = case.block_bounds(zone)[1][1]
+            break
+        except CaseError:
+            continue
     return floor + 0.5 * grid.spacing[1], grid.origin[1] + (grid.counts[1] - 0.5) * grid.spacing[1]
 
 
@@ -58,32 +66,40 @@ def default_dp_height(case):
     return min(DP_HEIGHT, highest - bottom)
 
 
+def section_points(grid, height):
+    """The cell centres of the row at `height` across the width and the depth (x fastest, then
+    z): the points whose mean is the row's cross-section average."""
+    return [(grid.origin[0] + (i + 0.5) * grid.spacing[0], height, grid.origin[2] + (k + 0.5) * grid.spacing[2])
+            for k in range(grid.counts[2]) for i in range(grid.counts[0])]
+
+
+def _points_block(points):
+    return "\n".join(f"            ({x:.10g} {y:.10g} {z:.10g})" for x, y, z in points)
+
+
 def write_bed_probes(case, field_interval, pressure_interval, tfm=False, dp_height=DP_HEIGHT):
     """Replace the functions of `case`'s controlDict by the bed probes: every field of the maps
-    at every cell centre every field_interval, p on the two rows (pressure_rows) every
-    pressure_interval (s). The coupled solver samples every so many gas steps;
-    twoPhaseEulerFoam (adjustable step) at run times."""
+    at every cell centre (every depth's) every field_interval, p at every cell centre of the
+    two rows (pressure_rows) every pressure_interval (s). The coupled solver samples every so
+    many gas steps; twoPhaseEulerFoam (adjustable step) at run times."""
     grid = case.grid()
-    centres = grid.centres()
-    z = grid.origin[2] + 0.5 * grid.spacing[2]
-    rows = [(x, y) for y in pressure_rows(case, dp_height) for x, _, _ in centres[:grid.counts[0]]]
+    rows = [point for y in pressure_rows(case, dp_height) for point in section_points(grid, y)]
     fields = TFM_FIELDS if tfm else COUPLED_FIELDS
     if tfm:
         control = lambda dt: f"writeControl adjustableRunTime; writeInterval {dt:.10g};"
     else:
         steps = lambda dt: max(1, int(round(dt / case.delta_t())))
         control = lambda dt: f"writeControl timeStep; writeInterval {steps(dt)};"
-    points = "\n".join(f"            ({x:.10g} {y:.10g} {z:.10g})" for x, y, _ in centres)
-    row_points = "\n".join(f"            ({x:.10g} {y:.10g} {z:.10g})" for x, y in rows)
+    across = "" if grid.counts[2] == 1 else f" (each across its {grid.counts[2]} cells of depth)"
     block = (
         "functions\n{\n"
-        f"    // tfdem.bed: every cell centre (maps) and two rows of cells {dp_height:g} m apart (Delta p)\n"
+        f"    // tfdem.bed: every cell centre (maps) and two rows of cells {dp_height:g} m apart{across} (Delta p)\n"
         f"    {FIELDS}\n    {{\n        type probes; libs (\"libsampling.so\");\n"
         f"        {control(field_interval)}\n        fields ({' '.join(fields)});\n"
-        f"        probeLocations\n        (\n{points}\n        );\n    }}\n"
+        f"        probeLocations\n        (\n{_points_block(grid.centres())}\n        );\n    }}\n"
         f"    {PRESSURE}\n    {{\n        type probes; libs (\"libsampling.so\");\n"
         f"        {control(pressure_interval)}\n        fields (p);\n"
-        f"        probeLocations\n        (\n{row_points}\n        );\n    }}\n"
+        f"        probeLocations\n        (\n{_points_block(rows)}\n        );\n    }}\n"
         "}\n")
     path = case.file("system", "controlDict")
     text = open(path).read()
@@ -92,33 +108,83 @@ def write_bed_probes(case, field_interval, pressure_interval, tfm=False, dp_heig
     open(path, "w").write(text)
 
 
+def map_columns(grid, locations):
+    """The (row, column) map index, row * nx + column, of the cell under each probe location
+    (x, y, z): probes at any depth fall on their x, y column."""
+    def index(value, axis):
+        return min(max(int((value - grid.origin[axis]) // grid.spacing[axis]), 0), grid.counts[axis] - 1)
+    return numpy.array([index(y, 1) * grid.counts[0] + index(x, 0) for x, y, _ in locations])
+
+
+def depth_average(values, columns, cells):
+    """(samples, cells) map from (samples, probes) values: the mean over the probes that fall
+    on each (row, column) cell (`columns`, from map_columns), i.e. over the depth. ValueError
+    when a cell has no probe."""
+    values = numpy.asarray(values, dtype=float)
+    if values.ndim != 2 or values.shape[1] != len(columns):
+        raise ValueError(f"map samples of shape {values.shape}: expected (samples, {len(columns)}), one value a probe")
+    counts = numpy.bincount(columns, minlength=cells)
+    if counts.size != cells or not counts.all():
+        missing = int((counts[:cells] == 0).sum())
+        raise ValueError(f"{missing} of the {cells} map cells have no probe: the probes do not cover the grid")
+    sums = numpy.zeros((values.shape[0], cells))
+    numpy.add.at(sums.T, columns, values.T)
+    return sums / counts
+
+
+def section_pressure_drop(p, heights, rows):
+    """Delta p from samples (samples, probes) of p on two rows of cells: `heights` (one a
+    probe) names each probe's row, `rows` the (bottom, top) heights; the bottom row's mean
+    minus the top row's (each a cross-section average)."""
+    p, heights = numpy.asarray(p, dtype=float), numpy.asarray(heights, dtype=float)
+    if p.ndim != 2 or p.shape[1] != heights.size:
+        raise ValueError(f"pressure samples of shape {p.shape}: expected (samples, {heights.size}), one value a probe")
+    means = []
+    for level in rows:
+        on_row = numpy.abs(heights - level) <= 1e-9 * max(1.0, abs(level))
+        if not on_row.any():
+            raise ValueError(f"no pressure probe on the row at y = {level:g} m")
+        means.append(p[:, on_row].mean(axis=1))
+    return means[0] - means[1]
+
+
 class BedOutputs:
-    """What a bed run wrote, as arrays: field_t and solids (samples x cells), p_t and dp, theta
-    (the granular temperature per cell; None when the run did not sample it), and for the
-    coupled solver the contact and drag force maps and the particle statistics."""
+    """What a bed run wrote, as arrays: field_t and solids (samples x map cells, each map cell an
+    x, y column averaged over the depth), p_t and dp (the two rows' cross-section means), theta
+    (the granular temperature per map cell; None when the run did not sample it), and for the
+    coupled solver the contact and drag force maps and the particle statistics. depth_cells:
+    the cells across the depth the maps average (1 for a bed one cell deep)."""
 
     def __init__(self, case, tfm=False):
         self.case, self.tfm = case, tfm
         self.grid = case.grid()
         nx, ny = self.grid.counts[0], self.grid.counts[1]
         self.shape = (ny, nx)
-        self.y = numpy.array([c[1] for c in self.grid.centres()]).reshape(self.shape)
+        self.depth_cells = self.grid.counts[2]
+        self.y = numpy.array([c[1] for c in self.grid.centres()[:nx * ny]]).reshape(self.shape)
         path = case.path
-        rows = joined_series(path, FIELDS, TFM_FIELDS[0] if tfm else COUPLED_FIELDS[0])
+        first = TFM_FIELDS[0] if tfm else COUPLED_FIELDS[0]
+        columns = map_columns(self.grid, probe_locations(path, FIELDS, first))
+        rows = joined_series(path, FIELDS, first)
         self.field_t = numpy.array([r[0] for r in rows])
-        values = numpy.array([r[1] for r in rows])
+
+        def field_map(name):
+            return depth_average([r[1] for r in joined_series(path, FIELDS, name)], columns, nx * ny)
+
+        values = depth_average([r[1] for r in rows], columns, nx * ny)
         self.solids = values if tfm else 1.0 - values
         if not tfm:
-            self.contact = numpy.array([r[1] for r in joined_series(path, FIELDS, "contactForceByWeight")])
-            self.drag = numpy.array([r[1] for r in joined_series(path, FIELDS, "dragForceByWeight")])
+            self.contact = field_map("contactForceByWeight")
+            self.drag = field_map("dragForceByWeight")
             self.particles = particle_statistics(path)
         try:  # runs prepared before the field was sampled have none
-            self.theta = numpy.array([r[1] for r in joined_series(path, FIELDS, GRANULAR_TEMPERATURE[tfm])])
+            self.theta = field_map(GRANULAR_TEMPERATURE[tfm])
         except OutputError:
             self.theta = None
         p = joined_series(path, PRESSURE, "p")
+        heights = [location[1] for location in probe_locations(path, PRESSURE)]
         self.p_t = numpy.array([r[0] for r in p])
-        self.dp = row_pressure_drop(numpy.array([r[1] for r in p]), nx)
+        self.dp = section_pressure_drop([r[1] for r in p], heights, (min(heights), max(heights)))
 
     def mean_height(self):
         """(t, mean particle height in m): the particles' (coupled) or the solids' centroid
@@ -138,16 +204,6 @@ class BedOutputs:
     def field_at(self, values, t):
         """The sampled map nearest to time t, as (rows, columns)."""
         return values[int(numpy.argmin(numpy.abs(self.field_t - t)))].reshape(self.shape)
-
-
-def row_pressure_drop(p_rows, nx):
-    """Delta p (at 20 cm: seed 000 Fig. 3) from the pressure probes of write_bed_probes, one
-    sample a row of p_rows: the first nx values on the bottom row of cells, the next nx on the
-    upper row; the bottom row's mean minus the upper row's."""
-    p_rows = numpy.asarray(p_rows, dtype=float)
-    if p_rows.ndim != 2 or p_rows.shape[1] != 2 * nx:
-        raise ValueError(f"pressure samples of shape {p_rows.shape}: expected (samples, {2 * nx}), two rows of {nx}")
-    return p_rows[:, :nx].mean(axis=1) - p_rows[:, nx:].mean(axis=1)
 
 
 def to_grid(field, shape):

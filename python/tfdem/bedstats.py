@@ -15,7 +15,9 @@ carries the weight of the particles above the bottom row). The batch-means error
 a batch is much longer than Delta p's integrated autocorrelation time tau (tfdem.stats);
 tau and the error it implies, std sqrt(tau / N), are reported beside it, and a batch shorter
 than 5 tau is named. Writes ROOT/bed_statistics.json and ROOT/bed_statistics.png (Delta p and
-the mean height against time, the time-averaged solids-fraction map).
+the mean height against time, the time-averaged solids-fraction map). Any layout: a bed more
+than one cell deep has its map averaged over the depth and its Delta p rows averaged over the
+cross-section (width and depth), which the report says.
 """
 import argparse
 import json
@@ -146,12 +148,20 @@ def statistics(run_case, start, end, batch, band):
     names = {"dp20_mean": "dp_mean", "dp20_std": "dp_fluctuation", "dp20_jitter": "dp_jitter",
              "mean_height": "mean_height", "dp20_frequency": "dp_frequency"}
     out = {"window": [start, end], "batch": batch, "band": band, "dp_rows": [bottom, top],
-           "dp_height": top - bottom, "weight_per_area": weight}
+           "dp_height": top - bottom, "weight_per_area": weight, "map": map_description(outputs)}
     out.update({names[k]: v for k, v in metrics.items()})
     out["dp_over_weight"] = {"value": metrics["dp20_mean"]["value"] / weight,
                              "error": metrics["dp20_mean"]["error"] / weight}
     out["correlation"] = correlation_check(outputs.p_t, outputs.dp, start, end, batch)
     return out, outputs
+
+
+def map_description(outputs):
+    """What a map cell of the report stands for: the cell, or the x, y column of cells averaged
+    over the depth (a bed more than one cell deep)."""
+    if outputs.depth_cells == 1:
+        return "the solids fraction of each gas cell (the bed is one cell deep)"
+    return f"the solids fraction of each x, y column of gas cells averaged over the depth ({outputs.depth_cells} cells)"
 
 
 def _probe_rows(case):
@@ -173,7 +183,8 @@ def describe(s):
              f"  its fluctuation ({1000 * s['band']:g} ms means): {pm('dp_fluctuation', unit=' Pa')}; "
              f"faster jitter {pm('dp_jitter', unit=' Pa')}",
              f"  dominant frequency {pm('dp_frequency', unit=' Hz')}",
-             f"  mean particle height {pm('mean_height', 100, ' cm')}"]
+             f"  mean particle height {pm('mean_height', 100, ' cm')}",
+             f"  time-averaged map: {s['map']}; Delta p between the two rows' means over the cross-section"]
     if c["tau_seconds"] is None:
         lines.append(f"  Delta p's correlation time: not measurable in this window ({c['note']}); the batch-means "
                      "errors are unchecked: run longer")
@@ -210,7 +221,8 @@ def plot(outputs, s, path):
               grid.origin[1], grid.origin[1] + grid.counts[1] * grid.spacing[1]]
     image = axes[2].imshow(outputs.field_average(outputs.solids, start, end), origin="lower", extent=extent,
                            vmin=0, vmax=0.65, cmap="viridis")
-    axes[2].set_title("solids fraction", fontsize=8)
+    across = "" if outputs.depth_cells == 1 else f"\naveraged over the depth ({outputs.depth_cells} cells)"
+    axes[2].set_title(f"solids fraction{across}", fontsize=8)
     fig.colorbar(image, ax=axes[2], fraction=0.08)
     fig.tight_layout()
     save_figure_atomic(fig, path, dpi=110)

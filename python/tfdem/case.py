@@ -244,6 +244,18 @@ class Case:
         """[(x, y, z)] of a probes function object of system/controlDict."""
         return _points(self.function_entry(function, "probeLocations")[1:-1])
 
+    def pressure_height(self, function):
+        """The height y (m) a pressure function object of system/controlDict samples: a probes
+        object's first location, or the point of a surfaceFieldValue's cutting plane."""
+        body = self.function_body(function)
+        if re.search(r"(?m)^\s*probeLocations\s", body):
+            return self.probe_locations(function)[0][1]
+        found = re.search(r"\bpoint\s*\(([^()]*)\)", body)
+        if not found:
+            raise CaseError(f"{self.file('system', 'controlDict')}: function '{function}' has neither probeLocations "
+                            "nor a cutting plane's point")
+        return vector(f"({found.group(1)})")[1]
+
     def set_probe_locations(self, function, points):
         """Replace the probeLocations of a probes function object of system/controlDict."""
         path = self.file("system", "controlDict")

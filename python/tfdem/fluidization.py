@@ -11,14 +11,15 @@ The case (as tutorials/fluidization_curve, whose files say the same):
   - coupling.yaml particles (d, rho_p: Wen-Yu's U_mf) and its DEM script (the script's
     `read_data` file is the bed; `variable floor` is the height of the DEM wall the bed rests
     on; `fix height_out ... print` writes t and the mean particle height; `fix forces_out ...
-    ave/time` the particles' vertical forces from the gas, the plate and the two side walls);
+    ave/time` the particles' vertical forces from the gas, the plate, the two side walls, the
+    lid and, in a bed more than one layer deep, the front and back walls);
   - constant/transportProperties (rho_g, mu), constant/g, system/blockMeshDict (column width
     and depth, the cellZone of the distributor's porous body), the distributor's
     Darcy-Forchheimer coefficients in fvOptions (f must be zero: its linear pressure drop
     mu d L U is subtracted; no fvOptions, no plate);
   - system/controlDict: endTime = the sum of the hold times; function objects `inletPressure`
-    (surfaceFieldValue, area average of p on the inlet) and `abovePressure` (one probe above
-    the bed at every level). The inlet patch is `inlet`; this module writes 0/U (flow along
+    (surfaceFieldValue, area average of p on the inlet) and `abovePressure` (above the bed at
+    every level: a surfaceFieldValue's area average over a cross-section, or probes, averaged). The inlet patch is `inlet`; this module writes 0/U (flow along
     +y).
 
 Per level, once settled (after min(settling, half the hold time)): dp = p(inlet) - p(probe)
@@ -228,7 +229,8 @@ def require_soft_spheres(case):
 def prepare_run(source, dest, schedule, runner=tfdem.run.run, set_end_time=False):
     """Copy the case from source to dest (unless they are the same), pack its bed (when the
     schedule has `packing`; else a bed tfdem pack poured must match its stamp), write 0/U and
-    run blockMesh and tfdemFoam there via runner(args, cwd, log_name)."""
+    run blockMesh and tfdemFoam there via runner(args, cwd, log_name), the solver's progress
+    lines shown (runner's show_progress)."""
     case = Case(source)
     require_soft_spheres(case)
     if os.path.abspath(source) != os.path.abspath(dest):
@@ -241,7 +243,7 @@ def prepare_run(source, dest, schedule, runner=tfdem.run.run, set_end_time=False
         verify_stamp(case)
     write_velocity_file(case, schedule, set_end_time)
     runner(["blockMesh"], case.path, "log.blockMesh")
-    runner(["tfdemFoam"], case.path, "log.tfdemFoam")
+    runner(["tfdemFoam"], case.path, "log.tfdemFoam", show_progress=True)
 
 
 # The bed and its outputs ----------------------------------------------------------------------
@@ -264,7 +266,7 @@ class Bed:
         lo, hi = c.mesh_bounds()
         self.width, self.depth = hi[0] - lo[0], hi[2] - lo[2]
         self.floor = dem.value(dem.variable("floor"))
-        self.probe_height = c.probe_locations("abovePressure")[0][1] - lo[1]
+        self.probe_height = c.pressure_height("abovePressure") - lo[1]
         plate = c.porosity()
         if plate is None:
             self.darcy, self.plate_thickness = 0.0, 0.0
@@ -311,13 +313,19 @@ class Bed:
         inlet = outputs.joined_series(self.case.path, "inletPressure", "surfaceFieldValue.dat")
         # the two function objects print their times at different precisions (the probes at
         # writePrecision): samples are matched on the time rounded to well below the gas step
-        above = {round(t, 9): p[0] for t, p in outputs.probes(self.case.path, "abovePressure", "p")}
+        above = {round(t, 9): p for t, p in outputs.pressure_series(self.case.path, "abovePressure")}
         return [(t, p[0] - above[round(t, 9)] - self.rho_g * self.g * self.probe_height) for t, p in inlet
                 if round(t, 9) in above]
 
 
 def _columns(rows, column):
     return [r[0] for r in rows], [r[1][column - 1] for r in rows]
+
+
+def side_columns(forces):
+    """The columns of forces_out that are walls beside the bed: x0 and x1 (3, 4), and in a bed
+    more than one layer deep the front and back walls z0 and z1 (6, 7; 5 is the lid)."""
+    return (3, 4, 6, 7) if forces and len(forces[0][1]) >= 7 else (3, 4)
 
 
 def levels(bed, schedule):
@@ -344,7 +352,7 @@ def levels(bed, schedule):
             "ergun": bed.ergun_pressure_drop(u, eps, height),
             "gas": force(1) / weight,
             "plate": force(2) / weight,
-            "side": (force(3) + force(4)) / weight,
+            "side": sum(force(k) for k in side_columns(forces)) / weight,
         })
     return result
 

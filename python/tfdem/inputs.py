@@ -13,7 +13,8 @@ YAML as the solver reads it:
 
 Checked values (Source): number() finite and within a range, count() a whole number (800.7,
 "abc" and true are refused, never truncated), mapping() the keys a section takes (an unknown
-key with the nearest known name), sequence() a list of a length, choice() one of some names.
+key with the nearest known name), sequence() a list of a length, choice() one of some names,
+boolean() true or false.
 """
 import argparse
 import difflib
@@ -245,6 +246,12 @@ class Source:
             self.fail(key, f"expected {what}, got {shown(value)}")
         if not shortest <= len(value) <= longest:
             self.fail(key, f"expected {what}, got {len(value)} item(s)")
+        return value
+
+    def boolean(self, key, value, what="true or false"):
+        """true or false (YAML's booleans; 1, 0, 'yes' as text and the like are refused)."""
+        if not isinstance(value, bool):
+            self.fail(key, f"{shown(value)} is not true or false: give {what}")
         return value
 
     def choice(self, key, value, choices):

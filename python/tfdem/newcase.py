@@ -24,14 +24,20 @@
     dem: {engine: hard_sphere, tangential_restitution: 0.33}  # optional: the default engine is
                                # liggghts (soft spheres); hard_sphere is seed 001's event-driven
                                # engine (section 3.3), with beta_0 (default: the soft contacts')
+                               # and, when given, its other keys of coupling.yaml's
+                               # dem.hard_sphere: elastic_within, max_collisions_per_particle,
+                               # contact_gap, move (HARD_SPHERE_KEYS)
     mesh: {cell_size: 0.004}   # optional: the gas cells' size, m
 
 Derived (each rule stated in `derive`): the gas cells (four of the largest diameter, seed
 000's uniform bed; square), the contact stiffness (an impact at U_mf sinks 5 % of d), the
 damping of every pair of types from e_n (written into the DEM script as seed 001 eq. 27),
 the DEM step (the scene check's rule, `tfdem-scene-check`), the gas step and coupling
-interval, the lid, the plate's resistance, the probes, the packing. The formulas the
-generated files need are written into them, so a value edited there stays the only copy.
+interval, the lid, the plate's resistance or the empty windbox row below a bed fed through its
+whole bottom, the pressure functions, the packing. The formulas the generated files need are
+written into them, so a value edited there stays the only copy. Warnings (a bed under
+SHALLOW_BED_CELLS gas cells deep, an inflow that lifts the bed to the lid, a setting outside
+TESTED_RANGES) are printed with numbers and a suggestion and kept in derived.txt.
 """
 import argparse
 import contextlib
@@ -65,6 +71,7 @@ LID_OVER_BED = 2.0            # the column should be at least this many packed b
 LARGEST_COUNT = 2 ** 31 - 1   # OpenFOAM's 32-bit labels: gas cells and time steps
 MAX_SIZES = 9                 # particle sizes (the pour's templates; in.bed's per-pair variable names)
 FIELDS_TEMPLATE = os.path.join(TUTORIALS, "bubbling_bed", "system")
+PLATE_ZONE, WINDBOX_ZONE = "distributor", "windbox"  # the cell zone of the row below the bed
 
 
 class BedError(InputError):
@@ -81,7 +88,20 @@ SCHEMA = {
     "run": {"end_time": REQUIRED, "write_interval": REQUIRED},
     "coupling": {"transfer": "averaged", "drag_law": "ergun_wen_yu"},
     "mesh": {"cell_size": 0.0},
-    "dem": {"engine": "liggghts", "tangential_restitution": "derived"},
+    "dem": {"engine": "liggghts", "tangential_restitution": "derived", "elastic_within": None,
+            "max_collisions_per_particle": None, "contact_gap": None, "move": None},
+}
+# The hard-sphere engine's own keys of coupling.yaml's dem.hard_sphere (coupling/src/config.cpp
+# read_hard_sphere) that bed.yaml's dem passes through when given (None: the solver's default):
+# (low, high, what); `move` is true or false
+HARD_SPHERE_KEYS = {
+    "elastic_within": (0.0, 1.0, "a time in s in [0, 1]: a collision within it of either particle's previous one is "
+                       "elastic and smooth (the TC model; 0: off; the solver's default 1e-5)"),
+    "max_collisions_per_particle": (1, 100000000, "a whole number of 1 to 1e8: collisions per particle in one flow "
+                                    "step above which the run stops (the solver's default 10000)"),
+    "contact_gap": (0.0, 1.0, "a fraction in [0, 1] of the pair's mean diameter within which N_c counts a pair "
+                    "(the solver's default 0.01)"),
+    "move": (None, None, "true, or false for particles that stay where they are (a fixed bed)"),
 }
 ENGINES = ("liggghts", "hard_sphere")
 SIZE_KEYS = ("diameter", "number", "mass_fraction")
@@ -120,9 +140,22 @@ def load_bed(path):
 def _check_dem(source, bed):
     dem = bed["dem"]
     source.choice("dem.engine", dem["engine"], ENGINES)
+    hard = dem["engine"] == "hard_sphere"
+    for key, (low, high, what) in HARD_SPHERE_KEYS.items():
+        if dem[key] is None:
+            continue
+        if not hard:
+            source.fail(f"dem.{key}", "only the hard-sphere engine takes it (LIGGGHTS' soft contacts are set by "
+                        "e_n, k_n and friction); set dem.engine: hard_sphere, or leave it out")
+        if key == "move":
+            dem[key] = source.boolean(f"dem.{key}", dem[key], what)
+        elif key == "max_collisions_per_particle":
+            dem[key] = source.count(f"dem.{key}", dem[key], low, high, what)
+        else:
+            dem[key] = source.number(f"dem.{key}", dem[key], low, high, what=what)
     if dem["tangential_restitution"] == "derived":
         return
-    if dem["engine"] != "hard_sphere":
+    if not hard:
         source.fail("dem.tangential_restitution", "only the hard-sphere engine takes beta_0 (the soft contacts' "
                     "tangential damping follows from e_n); set dem.engine: hard_sphere, or leave it out")
     dem["tangential_restitution"] = source.number(
@@ -271,6 +304,21 @@ def _check_optional(source, bed, given):
         bed["coupling"][key] = source.text(f"coupling.{key}", bed["coupling"][key], what)
 
 
+def _cell_shape(box, dx, dy, depth, nz):
+    """'one cell deep', 'cubic', or what keeps the cells from being cubes (the box's height or
+    depth not a whole number of cells as wide as the width's)."""
+    if nz == 1:
+        return "one cell deep"
+    sides = [dx, dy, depth / nz]
+    if max(sides) - min(sides) <= 1e-6 * dx:
+        return "cubic"
+    off = [(name, length, round(length / dx) * dx) for name, length in (("height", box["height"]), ("depth", depth))
+           if abs(length / dx - round(length / dx)) > 1e-6]
+    return (f"not cubic: the box's {' and '.join(f'{name} {length:g} m' for name, length, _ in off)} "
+            f"{'is not a whole number' if len(off) == 1 else 'are not whole numbers'} of the width's {dx:.4g} m "
+            f"cells ({', '.join(f'{name} {whole:.4g} m' for name, _, whole in off)} would make them cubes)")
+
+
 def _round_down(value):
     """The largest of 1, 2, 2.5, 5 x 10^k not above value (a gas step that sampling intervals
     such as 0.01 s hold a whole number of times)."""
@@ -344,6 +392,13 @@ def _fastest_inflow(bed):
     return max([bed["inflow"]["velocity"]] + [j["velocity"] for j in bed["inflow"]["jets"]])
 
 
+def windbox(bed):
+    """Whether the case has an empty cell row below the bed (the floor one cell up): every bed
+    fed through its whole bottom (uniform inflow, with or without a plate). Not under jets: an
+    empty row would spread a jet under the bed."""
+    return not bed["inflow"]["jets"]
+
+
 def _closed_bottom(bed):
     """Whether the bottom outside the jets is a wall (jets and no background inflow)."""
     return bool(bed["inflow"]["jets"]) and bed["inflow"]["velocity"] == 0.0
@@ -383,7 +438,7 @@ def derive(bed, path="bed.yaml"):
     out.update(nx=nx, ny=ny, nz=nz, dx=dx, dy=dy, dz=depth / nz)
     why = "mesh.cell_size" if bed["mesh"]["cell_size"] else f"{CELL_DIAMETERS:g} of the largest diameter, seed 000's uniform bed"
     note(f"gas cells {dx:.4g} x {dy:.4g} x {depth / nz:.4g} m ({nx} x {ny} x {nz}): {dx / d_large:.3g} d wide ({why}); "
-         f"{'one cell deep' if nz == 1 else 'cubic'}")
+         f"{_cell_shape(box, dx, dy, depth, nz)}")
 
     # jets on the cells' faces: a jet is a patch of whole faces
     jets = []
@@ -464,12 +519,17 @@ def derive(bed, path="bed.yaml"):
     solid_volume = out["count"] * mean_volume
     out["bed_mass"] = rho * solid_volume
     plate = bool(inflow["plate"])
-    floor = dy if plate else 0.0
+    floor = dy if windbox(bed) else 0.0
     out["floor"] = floor
     bed_height = solid_volume / (PACKED_SOLID_FRACTION * box["width"] * depth)
     out["bed_height"] = bed_height
+    rests_on = (f", on a plate at y = {floor:g} m (one cell row of windbox)" if plate else
+                f", on a floor at y = {floor:g} m above one empty cell row (a windbox: the gas enters below the "
+                "bed, so the inlet's area-averaged p is the bed's bottom's; with the bed in the inlet's cells it "
+                "leaves out the drop across their lower half: 17 % short on a 2.4 cm 3-D fixed bed of 8 mm cells, "
+                "measured)" if floor else "")
     note(f"bed {out['count']} spheres, {out['bed_mass'] * 1000:.4g} g, about {bed_height * 100:.3g} cm deep packed "
-         f"(solid fraction {PACKED_SOLID_FRACTION:g}){f', on a plate at y = {floor:g} m (one cell row of windbox)' if plate else ''}")
+         f"(solid fraction {PACKED_SOLID_FRACTION:g}){rests_on}")
     if box["height"] - floor < LID_OVER_BED * bed_height:
         raise BedError(f"{path}: box.height: {box['height']:g} m leaves the bed (about {bed_height:.3g} m packed) no "
                        f"room to expand or be poured; give at least {floor + LID_OVER_BED * bed_height:.3g} m")
@@ -485,6 +545,99 @@ def derive(bed, path="bed.yaml"):
     u_ratio = _fastest_inflow(bed) / u_mf
     note(f"inflow {_fastest_inflow(bed):g} m/s = {u_ratio:.3g} U_mf (Wen-Yu, smallest spheres); terminal velocity "
          f"{scene['terminal_velocity']:.3g} m/s")
+    out["mean_inflow"] = mean_inflow(bed)
+    if inflow["jets"]:
+        note(f"mean superficial velocity over the whole bottom {out['mean_inflow']:.3g} m/s (the jets' flow and the "
+             f"rest's over the width): {out['mean_inflow'] / u_mf:.3g} U_mf, "
+             f"{out['mean_inflow'] / scene['terminal_velocity']:.2g} of the terminal velocity")
+    out["warnings"] = (_shallow_bed_warnings(bed, out) + _lifted_bed_warnings(bed, out)
+                       + _untested_warnings(bed, out))
+    return out
+
+
+SHALLOW_BED_CELLS = 3.0  # a packed bed fewer gas cells deep than this is one or two cells to the gas
+
+
+def _shallow_bed_warnings(bed, dv):
+    """A bed one or a few gas cells deep: the gas resolves neither its bubbles nor its pressure
+    profile. The suggestion: the count, the box or the cells that make it SHALLOW_BED_CELLS deep."""
+    rows = dv["bed_height"] / dv["dy"]
+    if rows >= SHALLOW_BED_CELLS:
+        return []
+    box, d = bed["box"], bed["particles"]["sizes"][-1]["diameter"]
+    factor = SHALLOW_BED_CELLS / rows  # the cross-section shrinks, or the count grows, by this much
+    if dv["nz"] > 1:
+        narrower = (f"a box {box['width'] / math.sqrt(factor):.3g} x {dv['depth'] / math.sqrt(factor):.3g} m in "
+                    "cross-section")
+    else:
+        narrower = f"a box {box['width'] / factor:.3g} m wide"
+    finest = SMALLEST_CELL_DIAMETERS * d
+    finer = (f"; cells of {finest:.3g} m (mesh.cell_size, {SMALLEST_CELL_DIAMETERS:g} d, the smallest the centroid "
+             f"void fraction takes) make it {dv['bed_height'] / finest:.2g} cells deep" if finest < dv["dy"] else "")
+    return [f"the bed is about {dv['bed_height'] * 100:.3g} cm deep packed: {rows:.2g} gas cells of "
+            f"{dv['dy'] * 1000:.3g} mm, too few for the gas to resolve its bubbles or its pressure profile "
+            f"(fewer than {SHALLOW_BED_CELLS:g}). For {SHALLOW_BED_CELLS:g} cells: {math.ceil(dv['count'] * factor)} "
+            f"particles, or {narrower}{finer}"]
+
+
+def mean_inflow(bed):
+    """The mean superficial velocity over the whole bottom (m/s): the jets' flow and the rest of
+    the bottom's (at inflow.velocity, or closed) over the width (every jet spans the depth)."""
+    inflow, width = bed["inflow"], bed["box"]["width"]
+    jets = inflow["jets"]
+    jet_width = sum(j["width"] for j in jets)
+    return (sum(j["velocity"] * j["width"] for j in jets) + inflow["velocity"] * (width - jet_width)) / width
+
+
+def _lifted_bed_warnings(bed, dv):
+    """A mean superficial velocity at or above the terminal velocity carries the whole bed up:
+    it ends pinned under the lid (a DEM wall), not fluidized."""
+    terminal, mean = dv["scene"]["terminal_velocity"], dv["mean_inflow"]
+    if mean < terminal:
+        return []
+    source = "the jets' and the rest's flow" if bed["inflow"]["jets"] else "the inflow"
+    return [f"{source} over the whole bottom is a mean superficial velocity of {mean:.3g} m/s = "
+            f"{mean / dv['u_mf']:.3g} U_mf, at or above the terminal velocity {terminal:.3g} m/s of the smallest "
+            "spheres: the gas carries the bed up as a whole and it ends pinned under the lid, not fluidized. Give "
+            f"a mean below {terminal:.3g} m/s (slower or narrower jets, less background inflow, or a wider box)"]
+
+
+# The ranges the project's coupled tests and measured tutorials cover (tests/integration/
+# test_new_case.py, test_drivers_on_new_case.py, test_pressure_balance_3d.py, test_hard_sphere.py;
+# tutorials/your_own_bed, seed000_study, bidisperse_segregation): (low, high, unit, where)
+TESTED_RANGES = {
+    "particle diameter": (0.001, 0.0025, "m", "1 mm (your_own_bed) to 2.5 mm (seed 000's beds)"),
+    "particles.density": (2500.0, 2700.0, "kg/m^3", "glass 2500 to 2700"),
+    "gas.density": (1.2, 1.2, "kg/m^3", "air only"),
+    "gas.viscosity": (1.8e-5, 1.8e-5, "Pa s", "air only"),
+    "particles.restitution": (0.8, 0.97, "", "e_n 0.8 (walls) to 0.97 (seed 000)"),
+    "particles.friction": (0.1, 0.3, "", "your_own_bed's 0.1 to the jet and 3-D beds' 0.3"),
+    "uniform inflow / U_mf": (0.37, 2.4, "", "fixed beds at 0.37-0.65 U_mf to bubbling at 2.4 U_mf"),
+    "jet velocity / U_mf": (0.0, 18.1, "", "the jet bed of test_new_case.py, 18.1 U_mf"),
+}
+
+
+def _untested_warnings(bed, dv):
+    """Each setting outside TESTED_RANGES: named, with the range the tests cover."""
+    p, u_mf = bed["particles"], dv["u_mf"]
+    values = {"particle diameter": [s["diameter"] for s in p["sizes"]],
+              "particles.density": [p["density"]],
+              "gas.density": [bed["gas"]["density"]],
+              "gas.viscosity": [bed["gas"]["viscosity"]],
+              "particles.restitution": [p["restitution"], p["wall"]["restitution"]],
+              "particles.friction": [p["friction"], p["wall"]["friction"]],
+              "uniform inflow / U_mf": [bed["inflow"]["velocity"] / u_mf] if not bed["inflow"]["jets"] else [],
+              "jet velocity / U_mf": [j["velocity"] / u_mf for j in bed["inflow"]["jets"]]}
+    out = []
+    for name, given in values.items():
+        low, high, unit, where = TESTED_RANGES[name]
+        outside = sorted({v for v in given if not low * (1 - 1e-9) <= v <= high * (1 + 1e-9)})
+        if outside:
+            span = f"{low:g}" if low == high else f"{low:g} to {high:g}"
+            out.append(f"{name} {', '.join(f'{v:.4g}' for v in outside)}{' ' + unit if unit else ''} is outside what "
+                       f"the project's tests cover ({span}{' ' + unit if unit else ''}: {where}): the case runs, but "
+                       "no test has checked results there; check a fixed bed against Ergun or a fluidization curve "
+                       "(tutorials/your_own_bed) before trusting it")
     return out
 
 
@@ -501,7 +654,7 @@ def block_mesh(bed, dv):
     """blockMeshDict: one block per span of x between jet edges and per row band (windbox)."""
     width, height, depth = bed["box"]["width"], bed["box"]["height"], dv["depth"]
     x_faces = sorted({0, dv["nx"]} | {j["from"] for j in dv["jets"]} | {j["to"] for j in dv["jets"]})
-    y_faces = [0, 1, dv["ny"]] if bed["inflow"]["plate"] else [0, dv["ny"]]
+    y_faces = [0, 1, dv["ny"]] if windbox(bed) else [0, dv["ny"]]
     xs = [i * dv["dx"] for i in x_faces]
     xs[-1] = width
     ys = [j * dv["dy"] for j in y_faces]
@@ -523,7 +676,7 @@ def block_mesh(bed, dv):
         for i in range(len(xs) - 1):
             v = lambda a, b, c: index[i + a, j + b, c]
             hexa = (v(0, 0, 0), v(1, 0, 0), v(1, 1, 0), v(0, 1, 0), v(0, 0, 1), v(1, 0, 1), v(1, 1, 1), v(0, 1, 1))
-            zone = " distributor" if bed["inflow"]["plate"] and j == 0 else ""
+            zone = f" {PLATE_ZONE if bed['inflow']['plate'] else WINDBOX_ZONE}" if windbox(bed) and j == 0 else ""
             cells = (x_faces[i + 1] - x_faces[i], y_faces[j + 1] - y_faces[j], dv["nz"])
             blocks.append(f"    hex ({' '.join(map(str, hexa))}){zone} ({cells[0]} {cells[1]} {cells[2]}) "
                           "simpleGrading (1 1 1)")
@@ -594,14 +747,49 @@ def initial_fields(bed, dv):
     }
 
 
+def _middle_centre(count, spacing):
+    """The centre of the middle cell of `count` cells (of the one just past the middle when
+    the count is even): a probe there samples one cell, never a face between two."""
+    return (count // 2 + 0.5) * spacing
+
+
+def _section_average(name, height, every, comment):
+    """A function object writing the area average of p over the column's cross-section at
+    `height` (a plane through a row of cell centres: each cell's own value, equal areas)."""
+    return f"""
+    // {comment}
+    {name}
+    {{
+        type            surfaceFieldValue;
+        libs            ("libfieldFunctionObjects.so");
+        writeControl    timeStep;
+        writeInterval   {every};
+        log             false;
+        writeFields     false;
+        regionType      sampledSurface;
+        name            {name}Plane;
+        sampledSurfaceDict
+        {{
+            type            plane;
+            planeType       pointAndNormal;
+            pointAndNormalDict {{ point (0 {_g(height)} 0); normal (0 1 0); }}
+            interpolate     false;
+        }}
+        operation       areaAverage;
+        fields          (p);
+    }}"""
+
+
 def control_dict(bed, dv):
-    width, height = bed["box"]["width"], bed["box"]["height"]
-    z = dv["dz"] / 2
-    above_plate = dv["floor"] + dv["dy"] / 2
+    height = bed["box"]["height"]
+    x, z = _middle_centre(dv["nx"], dv["dx"]), _middle_centre(dv["nz"], dv["dz"])
+    bottom_row = dv["floor"] + dv["dy"] / 2
     top = height - dv["dy"] / 2
     pressure_every = max(1, int(round(1e-3 / dv["gas_step"])))
+    below = "below the plate: the windbox" if bed["inflow"]["plate"] else "below the windbox row" if dv["floor"] else ""
     inlet = "" if "inlet" not in _patches(bed, dv) else f"""
-    // Mean pressure on the inlet (below the plate, if any: the windbox), for the fluidization curve
+    // Mean pressure on the inlet ({below or 'the bottom'}), for the fluidization curve and
+    // tfdem summary's Delta p
     inletPressure
     {{
         type            surfaceFieldValue;
@@ -636,8 +824,9 @@ adjustTimeStep  no;
 
 functions
 {{
-    // Pressure above the first cell row of the bed and in the top row (the bed's whole
-    // pressure drop) every {pressure_every} gas steps
+    // p every {pressure_every} gas steps: area averages over the cross-section (width and depth)
+    // of the bed's bottom row of cells (the first above the floor) and of the top row, and
+    // point values at mid-width and mid-depth on the same two rows
     pressure
     {{
         type            probes;
@@ -645,18 +834,11 @@ functions
         writeControl    timeStep;
         writeInterval   {pressure_every};
         fields          (p);
-        probeLocations  (({_g(width / 2)} {_g(above_plate)} {_g(z)}) ({_g(width / 2)} {_g(top)} {_g(z)}));
-    }}
-    // The top row's pressure again, for the fluidization curve's driver
-    abovePressure
-    {{
-        type            probes;
-        libs            ("libsampling.so");
-        writeControl    timeStep;
-        writeInterval   {pressure_every};
-        fields          (p);
-        probeLocations  (({_g(width / 2)} {_g(top)} {_g(z)}));
-    }}{inlet}
+        probeLocations  (({_g(x)} {_g(bottom_row)} {_g(z)}) ({_g(x)} {_g(top)} {_g(z)}));
+    }}{_section_average("bedPressure", bottom_row, pressure_every,
+                        "Mean pressure over the cross-section of the bed's bottom row of cells")}{
+    _section_average("abovePressure", top, pressure_every,
+                     "Mean pressure over the cross-section of the top row, for the fluidization curve")}{inlet}
 }}
 """)
 
@@ -677,7 +859,8 @@ def dem_script(bed, dv):
              f"variable        width equal {_g(box['width'])}",
              f"variable        height equal {_g(box['height'])}",
              f"variable        depth equal {_g(dv['depth'])}",
-             f"variable        floor equal {_g(dv['floor'])}" + ("   # the distributor plate" if dv["floor"] else ""),
+             f"variable        floor equal {_g(dv['floor'])}" + (("   # the distributor plate" if bed["inflow"]["plate"]
+                                                                      else "   # above the windbox row") if dv["floor"] else ""),
              f"variable        rho equal {_g(p['density'])}"]
     for i, d in enumerate(sizes, 1):
         lines.append(f"variable        d{i} equal {_g(d)}")
@@ -766,14 +949,19 @@ def dem_script(bed, dv):
               f"fix             height_out all print {max(1, int(round(1e-3 / dv['dem_step'])))} \"${{t}} ${{h}}\" "
               "file mean_height.txt screen no title \"# t (s)  mean particle height (m)\"",
               "# Where the bed's weight goes: vertical force on all particles from the gas, the plate, the",
-              "# side walls and the lid, averaged over 1 ms",
+              "# side walls (x), the lid" + ("" if dv["one_layer"] else " and the front and back walls (z)")
+              + ", averaged over 1 ms",
               "compute         f_gas all reduce sum f_fluid[2]",
               "compute         f_plate all reduce sum f_force_plate[2]",
               "compute         f_side all reduce sum f_force_wall_x0[2] f_force_wall_x1[2]",
               "compute         f_lid all reduce sum f_force_lid[2]"]
+    depth_walls = ""
+    if not dv["one_layer"]:
+        lines.append("compute         f_depth all reduce sum f_force_wall_z0[2] f_force_wall_z1[2]")
+        depth_walls = " c_f_depth[1] c_f_depth[2]"
     every = max(1, int(round(1e-3 / dv["dem_step"])))
     lines.append(f"fix             forces_out all ave/time 1 {every} {every} c_f_gas c_f_plate c_f_side[1] "
-                 "c_f_side[2] c_f_lid file forces.txt")
+                 f"c_f_side[2] c_f_lid{depth_walls} file forces.txt")
     return "\n".join(lines) + "\n"
 
 
@@ -791,7 +979,15 @@ def _dem_section(bed, dv):
     restitution: {_g(p['restitution'])}
     tangential_restitution: {dv['tangential_restitution']:.6g}
     friction: {_g(p['friction'])}
-    wall: {{restitution: {_g(p['wall']['restitution'])}, tangential_restitution: {dv['tangential_restitution']:.6g}, friction: {_g(p['wall']['friction'])}}}"""
+    wall: {{restitution: {_g(p['wall']['restitution'])}, tangential_restitution: {dv['tangential_restitution']:.6g}, friction: {_g(p['wall']['friction'])}}}""" + "".join(
+        f"\n    {key}: {_yaml_value(bed['dem'][key])}   # bed.yaml" for key in HARD_SPHERE_KEYS if bed["dem"][key] is not None)
+
+
+def _yaml_value(value):
+    """A value as coupling.yaml writes it: true/false, a whole number, or a number."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    return str(value) if isinstance(value, int) else _g(value)
 
 
 def coupling_yaml(bed, dv):
@@ -810,10 +1006,10 @@ coupling:
   drag_law: {bed['coupling']['drag_law']}
   void_fraction:
     method: centroid    # cells {dv['dx'] / sizes[-1]:.3g} diameters wide
-    two_dimensional: {'true' if dv['one_layer'] else 'false'}
+    two_dimensional: {'true' if dv['one_layer'] and len(sizes) == 1 else 'false'}{"   # one layer of two or more sizes: the 3-D volumes in cells one large diameter deep" if dv['one_layer'] and len(sizes) > 1 else ""}
     floor: 0.3
 output:
-  statistics_interval: {_g(dv['statistics_interval'])}   # s: N_c, mean height, ... (statistics.csv)
+  statistics_interval: {_g(dv['statistics_interval'])}   # s: N_c, mean height, ... (postProcessing/tfdemParticles/<start>/particles.dat)
   particles_vtk: true
 """
 
@@ -855,7 +1051,13 @@ distributor
 
 ALLRUN = """#!/usr/bin/env bash
 # Generated by tfdem new: packs the bed if there is none (tfdem pack), checks the packed bed is
-# the one tfdem pack finished (its stamp), meshes, runs tfdemFoam.
+# the one tfdem pack finished (its stamp), meshes, and runs tfdemFoam to the end time of
+# system/controlDict; a case that holds a checkpoint carries on from the newest (tfdem resume:
+# one a killed run left half-written is moved aside into incomplete/). Then tfdem summary
+# writes summary.csv and summary.png.
+# Stopped by Ctrl-C, `timeout` or a batch system's SIGTERM, the run writes a checkpoint and
+# exits 75: ./Allrun carries on from it, bit for bit as an unstopped run. To run longer, raise
+# endTime in system/controlDict and ./Allrun again.
 # Usage: ./Allrun [MPI ranks, default 1]. On several ranks the gas is whole on each or split
 # (decomposePar, -parallel) as tfdem-gas-layout's measured rule has it for the mesh's cells;
 # TFDEM_GAS_LAYOUT=whole or split chooses instead.
@@ -866,28 +1068,35 @@ ranks=${{1:-1}}
 case "$ranks" in ''|*[!0-9]*|0|00*) echo "$0: MPI ranks '$ranks': give a whole number of 1 or more" >&2; exit 2 ;; esac
 [ -e bed.data ] || "$TFDEM_PYTHON" -m tfdem.packing . > log.pack
 "$TFDEM_PYTHON" -m tfdem.packing --verify .
-blockMesh > log.blockMesh 2>&1
-solver=(tfdemFoam)
+[ -f constant/polyMesh/owner ] || blockMesh > log.blockMesh 2>&1
+"$TFDEM_PYTHON" -m tfdem.resume .
+args=()
+layout=whole
 if [ "$ranks" -gt 1 ]; then
-    cells=$(sed -n 's/^ *nCells: *//p' log.blockMesh)
+    cells=$(sed -n 's/.*nCells: *\([0-9]*\).*/\1/p' constant/polyMesh/owner | head -n 1)
     layout=${{TFDEM_GAS_LAYOUT:-$(tfdem-gas-layout "$cells" "$ranks")}}
     case "$layout" in whole|split) ;; *) echo "TFDEM_GAS_LAYOUT=$layout: give whole or split" >&2; exit 2 ;; esac
-    solver=(mpirun -np "$ranks" tfdemFoam)
-    if [ "$layout" = split ]; then
-        "$TFDEM_PYTHON" -m tfdem.run decompose . "$ranks" > log.decompose
-        solver+=(-parallel)
-    fi
 fi
-"${{solver[@]}}" 2>&1 | tee log.tfdemFoam | grep --line-buffered "TFDEM progress" || {{ tail -n 30 log.tfdemFoam; exit 1; }}
-grep -q "^End" log.tfdemFoam || {{ tail -n 30 log.tfdemFoam; exit 1; }}
+if [ "$layout" = split ]; then
+    "$TFDEM_PYTHON" -m tfdem.run decompose . "$ranks" > log.decompose
+    args=(-parallel)
+else   # a checkpoint written split made whole
+    "$TFDEM_PYTHON" -m tfdem.run reconstruct . > log.reconstruct
+fi
+[ -f log.tfdemFoam ] && mv log.tfdemFoam "log.tfdemFoam.$(date +%Y%m%d-%H%M%S)"
+status=0
+tfdem-solve log.tfdemFoam "$ranks" "${{args[@]}}" || status=$?
+[ "$status" -eq 75 ] && echo "$0: stopped at a checkpoint; ./Allrun $ranks carries on from it"
+"$TFDEM_PYTHON" -m tfdem.summary . || [ "$status" -ne 0 ] || status=$?
+exit "$status"
 """
 
 ALLCLEAN = """#!/usr/bin/env bash
 # Removes what the run made; keeps the inputs and the packed bed (bed.data and its stamp
 # bed.data.tfdem-packed; delete both to re-pour).
 cd "$(dirname "$0")" || exit 1
-rm -rf tfdem.lock *.tfdem-resume log.tfdemFoam log.blockMesh [1-9]* 0.[0-9]* constant/polyMesh processor* \\
-    postProcessing mean_height.txt forces.txt VTK in.bed.resumed
+rm -rf tfdem.lock *.tfdem-resume log.* [1-9]* 0.[0-9]* constant/polyMesh processor* incomplete \\
+    postProcessing mean_height.txt forces.txt VTK in.bed.resumed summary.csv summary.png
 """
 CASE_MARK = "derived.txt"   # a folder holding it is a case tfdem new wrote, which --force may replace
 TEMPORARY = ".tfdem-new-"  # the case being built: .<name>.tfdem-new-<pid>-<random>
@@ -905,7 +1114,8 @@ def case_files(bed, dv, source_text=None):
         f"nu      {_g(bed['gas']['viscosity'] / bed['gas']['density'])};\n",
         "coupling.yaml": coupling_yaml(bed, dv),
         "packing.yaml": packing_yaml(bed, dv),
-        "derived.txt": "What tfdem new derived, and why:\n" + "".join(f"  {n}\n" for n in dv["notes"]),
+        "derived.txt": "What tfdem new derived, and why:\n" + "".join(f"  {n}\n" for n in dv["notes"])
+        + ("Warnings:\n" + "".join(f"  {w}\n" for w in dv["warnings"]) if dv["warnings"] else ""),
     }
     if bed["dem"]["engine"] != "hard_sphere":
         files["in.bed"] = dem_script(bed, dv)
@@ -1108,6 +1318,8 @@ def _new(argv):
     print(f"tfdem new: wrote {args.case}. What it derived, and why (also in {args.case}/derived.txt):")
     for line in dv["notes"]:
         print(f"  {line}")
+    for line in dv["warnings"]:
+        print(f"tfdem new: warning: {line}")
     print(f"Next: tfdem pack {args.case} (pours the bed), then {args.case}/Allrun")
     return 0
 

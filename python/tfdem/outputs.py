@@ -68,6 +68,14 @@ def probes(case_path, name="pressure", field="p"):
     return joined_series(case_path, name, field)
 
 
+def pressure_series(case_path, name):
+    """(t, p) of a pressure function object, joined: a surfaceFieldValue's area average (its
+    surfaceFieldValue.dat), or the mean of a probes object's probes."""
+    if glob.glob(os.path.join(case_path, "postProcessing", name, "*", "surfaceFieldValue.dat")):
+        return [(t, values[0]) for t, values in joined_series(case_path, name, "surfaceFieldValue.dat")]
+    return [(t, sum(values) / len(values)) for t, values in probes(case_path, name, "p")]
+
+
 def probe_locations(case_path, name="pressure", field="p"):
     """Probe locations from the header of the first segment."""
     path = sorted(glob.glob(os.path.join(case_path, "postProcessing", name, "*", field)))[0]

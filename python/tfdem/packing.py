@@ -11,9 +11,12 @@ coupling.yaml, and what only the packing needs from the case's packing.yaml:
 
 The data file's box is the column, so the case's DEM script can read_data it. A column one
 particle deep (seed 000's 2-D rule) leaves no room to insert a sphere: it is poured into a slab
-PLANE_SLAB diameters deep, where spheres cannot pass one another, and every centre is then
-moved onto the mid-plane (overlaps of at most d - sqrt(d^2 - ((PLANE_SLAB - 1) d)^2), 0.13 %
-of d).
+PLANE_SLAB diameters deep, where spheres of one size cannot pass one another, and every centre
+is then moved onto the mid-plane (overlaps of at most d - sqrt(d^2 - ((PLANE_SLAB - 1) d)^2),
+0.13 % of d). Smaller spheres could pass the larger ones in such a slab (a 1.5 mm sphere has
+1.1 mm of play beside a 2.5 mm one, and moved onto the mid-plane they would overlap by half a
+diameter): two or more sizes are poured with every centre on the slab's mid-plane from their
+insertion on and held there (in.pour's `plane`).
 
 The packed bed is written at rest: every velocity and spin set to zero (what the pour leaves
 is contact vibration and rattlers, up to a few cm/s and hundreds of rad/s for 1 mm spheres),
@@ -86,6 +89,7 @@ def pour_variables(case, count, mass_fraction_small=None, mass_fractions=None, f
         values["mu"] = float(friction)
     if one_layer(case):
         values["depth"] = PLANE_SLAB * diameters[-1]
+        values["plane"] = int(len(diameters) > 1)
         # in the slab the spheres keep rattling at ~7 mm/s (the jet bed's 2400 of 4 mm, its
         # mean height steady to 1e-5 m over 40,000 steps): at rest below 1 cm/s
         values["rest_speed"] = 0.01
@@ -295,7 +299,7 @@ def pour(case, count, out="bed.data", ranks=1, runner=None, types=None, **option
         finally:
             if os.path.exists(case.file(SIZES_FILE)):
                 os.remove(case.file(SIZES_FILE))
-        lines = [line for line in output.splitlines() if line.startswith("TFDEM packed bed")]
+        lines = [for_display(line) for line in output.splitlines() if line.startswith("TFDEM packed bed")]
         if not lines or not os.path.isfile(case.file(pouring)):
             raise CaseError(f"{case.file('log.pour')}: the pour printed no 'TFDEM packed bed' line or wrote no "
                             f"{pouring}: see that log")
@@ -309,6 +313,15 @@ def pour(case, count, out="bed.data", ranks=1, runner=None, types=None, **option
     return summary
 
 
+LONG_NUMBER = re.compile(r"(?<![\w.])-?\d+\.\d{5,}(?:[eE][-+]?\d+)?(?![\w.])")
+
+
+def for_display(line, digits=4):
+    """A line with its long decimals (LIGGGHTS prints 20 digits) rounded to `digits`
+    significant ones: 0.012779559550864403802 -> 0.01278."""
+    return LONG_NUMBER.sub(lambda m: f"{float(m.group()):.{digits}g}", line)
+
+
 def _finish(case, path, diameters, summary, types):
     """The poured data file made the run's: each atom the type of its size, at rest, a
     one-layer column's centres on its mid-plane, `types` atom types declared (when given);
@@ -319,7 +332,8 @@ def _finish(case, path, diameters, summary, types):
     if one_layer(case):
         lo, hi = case.mesh_bounds()
         to_mid_plane(case.file(path), hi[2] - lo[2])
-        summary += f" (poured {PLANE_SLAB} diameters deep, centres moved onto the mid-plane)"
+        summary += (" (poured on the mid-plane)" if len(diameters) > 1 else
+                    f" (poured {PLANE_SLAB} diameters deep, centres moved onto the mid-plane)")
     if types is not None:
         set_atom_types(case.file(path), types)
     overlap = largest_overlap(case.file(path))

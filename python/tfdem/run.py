@@ -54,22 +54,29 @@ def command(args, ranks=1, gas=DEFAULT_GAS_LAYOUT):
     return ["mpirun", "-np", str(ranks)] + list(args) + (["-parallel"] if check_gas_layout(gas) == "split" else [])
 
 
-def run(args, cwd, log_name, ranks=1, expect_success=True, gas=DEFAULT_GAS_LAYOUT):
+def run(args, cwd, log_name, ranks=1, expect_success=True, gas=DEFAULT_GAS_LAYOUT, show_progress=False):
     """Run a program in cwd (under mpirun when ranks > 1, with -parallel when the gas is
-    split), its output to cwd/log_name; return (exit code, output). RunError when it fails and
-    success was expected."""
+    split), its output to cwd/log_name as it comes (with `show_progress`, its TFDEM progress
+    lines on the terminal too); return (exit code, output). RunError when it fails and success
+    was expected."""
     full = command(args, ranks, gas)
+    log = os.path.join(cwd, log_name)
     # errors="replace": LIGGGHTS 3.8.0, aborting on 2 ranks, sometimes echoes an error line
     # from a freed buffer (bytes that are not UTF-8) on the second rank.
-    proc = subprocess.run(full, cwd=cwd, env=environment(), stdout=subprocess.PIPE,
-                          stderr=subprocess.STDOUT, text=True, errors="replace")
-    log = os.path.join(cwd, log_name)
+    proc = subprocess.Popen(full, cwd=cwd, env=environment(), stdout=subprocess.PIPE,
+                            stderr=subprocess.STDOUT, text=True, errors="replace")
+    lines = []
     with open(log, "w") as out:
-        out.write(proc.stdout)
+        for line in proc.stdout:
+            out.write(line)
+            lines.append(line)
+            if show_progress and line.startswith("TFDEM progress"):
+                print(line, end="", flush=True)
+    proc.wait()
+    output = "".join(lines)
     if expect_success and proc.returncode != 0:
-        raise RunError(f"'{' '.join(full)}' exited with {proc.returncode} (log: {log}):\n"
-                       + proc.stdout[-3000:])
-    return proc.returncode, proc.stdout
+        raise RunError(f"'{' '.join(full)}' exited with {proc.returncode} (log: {log}):\n" + output[-3000:])
+    return proc.returncode, output
 
 
 def start(args, cwd, log_name, ranks=1, gas=DEFAULT_GAS_LAYOUT):

@@ -55,11 +55,12 @@ def poured_copy(tutorial, name, fraction, extra=()):
     return case, count
 
 
-def run(args, cwd, log_name, ranks=1, expect_success=True):
+def run(args, cwd, log_name, ranks=1, expect_success=True, **options):
     """Run a command (under mpirun when ranks > 1; a split gas needs -parallel in args, the
-    whole gas none); return (exit code, combined output); a failure ends the test."""
+    whole gas none; `options` as tfdem.run.run's); return (exit code, combined output); a
+    failure ends the test."""
     try:
-        return tfdem.run.run(args, cwd, log_name, ranks, expect_success)
+        return tfdem.run.run(args, cwd, log_name, ranks, expect_success, **options)
     except tfdem.run.RunError as e:
         print(e)
         fail(str(e).splitlines()[0])

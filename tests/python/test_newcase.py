@@ -24,7 +24,8 @@ import tempfile
 
 from tfdem.case import Case, CaseError, DemScript
 from tfdem.newcase import BedError, derive, load_bed, main, write_case
-from tfdem.packing import mixture, packing_settings
+from tfdem.batch import end_time_change
+from tfdem.packing import for_display, mixture, packing_settings
 
 failures = []
 
@@ -155,6 +156,123 @@ def check_hard_sphere(root):
         check("hard spheres: a DEM step is refused", "which has none" in str(error), str(error))
 
 
+WIDE = """
+box: {width: 0.08, height: 0.30, depth: 0.08}
+particles:
+  density: 2500
+  sizes: [{diameter: 0.002, number: 8000}]
+  restitution: 0.9
+  friction: 0.3
+inflow: {velocity: 2.0}
+run: {end_time: 0.05, write_interval: 0.05}
+"""
+
+
+def check_shallow_bed(root):
+    """Issue 48's 8 x 8 x 30 cm box with 8000 beads of 2 mm, by hand: solid volume 8000 pi
+    (0.002)^3 / 6 = 3.35103e-5 m^3, packed 3.35103e-5 / (0.6 (0.0064)) = 8.7266e-3 m deep;
+    cells 4 d = 8 mm across (10 x 10), 0.30 m / 8 mm = 37.5 rows -> 38 of 7.8947 mm (not
+    cubes: 38 x 8 mm = 0.304 m would make them so); the bed 8.7266 / 7.8947 = 1.1054 cells
+    deep, 3 cells at 3 / 1.1054 = 2.7140 times as many particles, 21713 (8000 x 2.7140 rounded
+    up), or a cross-section 2.7140 times smaller, 0.08 / sqrt(2.7140) = 0.0486 m a side."""
+    source = write(root, "wide.yaml", WIDE)
+    dv = derive(load_bed(source), source)
+    warning = "".join(dv["warnings"])
+    check("a bed 1.1 cells deep: warned", len(dv["warnings"]) == 1 and "1.1 gas cells of 7.89 mm" in warning,
+          str(dv["warnings"]))
+    check("... with the count and the box for 3 cells", "21713 particles" in warning
+          and "0.0486 x 0.0486 m in cross-section" in warning, warning)
+    cells = next(n for n in dv["notes"] if n.startswith("gas cells"))
+    check("cells of 8 x 7.89 x 8 mm are not called cubic, and the height that makes them cubes is named",
+          "not cubic" in cells and "height 0.3 m is not a whole number" in cells and "height 0.304 m" in cells, cells)
+    case_path = os.path.join(root, "wide_case")
+    write_case(case_path, load_bed(source), dv, source)
+    check("the warning kept in derived.txt", "Warnings:\n  the bed is about 0.873 cm" in
+          open(os.path.join(case_path, "derived.txt")).read())
+
+
+JETS = """
+box: {width: 0.072, height: 0.3, depth: one_layer}
+particles:
+  density: 2700
+  sizes: [{diameter: 0.002, number: 600}]
+  restitution: 0.9
+  friction: 0.3
+inflow: {jets: [%s]}
+run: {end_time: 0.05, write_interval: 0.05}
+"""
+
+
+def check_jets(root):
+    """Jets of 8 mm (a cell) through a closed bottom 72 mm wide, 2 mm beads of 2700 kg/m^3:
+    Ar = 1.2 (2698.8) 9.81 (0.002)^3 / (1.8e-5)^2 = 784450, Re_mf = sqrt(33.7^2 + 0.0408 Ar)
+    - 33.7 = 148.35, U_mf = 148.35 (1.8e-5) / (1.2 (0.002)) = 1.1126 m/s (Wen-Yu).
+    One jet of 20 m/s: 20 (0.008) / 0.072 = 2.22 m/s over the bottom, 2.0 U_mf: a note, no
+    warning. Five of 30 m/s: 5 (30) (0.008) / 0.072 = 16.7 m/s = 15.0 U_mf, above the spheres'
+    terminal velocity (about 11 m/s): the bed is lifted to the lid, warned; and 30 / 1.1126
+    = 26.96 U_mf a jet, past the 18.1 U_mf the tests cover, warned (once for the five)."""
+    one = write(root, "one_jet.yaml", JETS % "{centre: 0.036, width: 0.008, velocity: 20}")
+    dv = derive(load_bed(one), one)
+    note = next((n for n in dv["notes"] if n.startswith("mean superficial velocity")), "")
+    check("one jet: the mean over the bottom, 2.22 m/s = 2.0 U_mf", "2.22 m/s" in note and ": 2 U_mf" in note, note)
+    check("one jet: no warning", not dv["warnings"], str(dv["warnings"]))
+    five = write(root, "five_jets.yaml", JETS % ", ".join(
+        f"{{centre: {0.004 + 0.016 * k:.3f}, width: 0.008, velocity: 30}}" for k in range(5)))
+    dv = derive(load_bed(five), five)
+    lifted = [w for w in dv["warnings"] if "pinned under the lid" in w]
+    check("five jets: the bed pinned under the lid, warned with the mean 16.7 m/s = 15 U_mf",
+          len(lifted) == 1 and "16.7 m/s = 15 U_mf" in lifted[0], str(dv["warnings"]))
+    check("five jets: 26.96 U_mf a jet, outside the tested range (18.1 U_mf)",
+          any("jet velocity / U_mf 26.96 is outside" in w and "0 to 18.1" in w for w in dv["warnings"]),
+          str(dv["warnings"]))
+
+
+def check_untested(root):
+    """BED (1 mm glass, e_n 0.9, friction 0.1, air, 0.8 m/s = 1.49 U_mf) is inside every tested
+    range; steel beads (7800 kg/m^3) with friction 0.5 are outside two (2500-2700 kg/m^3 and
+    0.1-0.3)."""
+    source = write(root, "bed.yaml", BED)
+    check("the tutorial's bed: no warning", not derive(load_bed(source), source)["warnings"])
+    steel = write(root, "steel.yaml", BED.replace("density: 2500", "density: 7800").replace("friction: 0.1",
+                                                                                          "friction: 0.5"))
+    warnings = derive(load_bed(steel), steel)["warnings"]
+    names = [w.split(" ")[0] for w in warnings]
+    check("steel beads with friction 0.5: density and friction named with the tested ranges",
+          "particles.density" in names and "particles.friction" in names
+          and any("2500 to 2700 kg/m^3" in w for w in warnings) and any("0.1 to 0.3" in w for w in warnings),
+          str(warnings))
+
+
+def check_hard_sphere_keys(root):
+    """The hard-sphere keys of coupling.yaml's dem.hard_sphere given in bed.yaml reach it as
+    given; left out, the solver's defaults stand (not written)."""
+    source = write(root, "keys.yaml", BED + "dem: {engine: hard_sphere, elastic_within: 0, "
+                   "max_collisions_per_particle: 500, contact_gap: 0.02, move: false}\n")
+    bed = load_bed(source)
+    case_path = os.path.join(root, "keys_case")
+    write_case(case_path, bed, derive(bed, source), source)
+    hard = Case(case_path).coupling_value("dem.hard_sphere")
+    check("elastic_within, max_collisions_per_particle, contact_gap, move written as given",
+          (hard.get("elastic_within"), hard.get("max_collisions_per_particle"), hard.get("contact_gap"),
+           hard.get("move")) == (0, 500, 0.02, False), str(hard))
+    check("left out, not written", "elastic_within" not in Case(os.path.join(root, "hard_case_0.33"))
+          .coupling_value("dem.hard_sphere"))
+
+
+def check_small_ones():
+    """The batch's message for a lower end time; tfdem pack's summary line rounded for display
+    (0.012779559550864403802 -> 0.01278, 0.0028906183994024999689 -> 0.002891)."""
+    check("a lower end time is not 'carried on'", end_time_change(2.0, 1.25, True).startswith(
+        "end time lowered from 2 s to 1.25 s: its last checkpoint is at or past 1.25 s, so it is done"))
+    check("... nor when it runs on to it", end_time_change(2.0, 1.25, False) ==
+          "end time lowered from 2 s to 1.25 s: runs on to 1.25 s from its last checkpoint")
+    check("a later end time is carried on", end_time_change(1.0, 2.0, False) == "carried on from 1 s to 2 s")
+    line = for_display("TFDEM packed bed: 2000 particles, mean height 0.012779559550864403802 m, rms speed "
+                       "0.0028906183994024999689 m/s")
+    check("tfdem pack's numbers rounded for display", line == "TFDEM packed bed: 2000 particles, mean height "
+          "0.01278 m, rms speed 0.002891 m/s", line)
+
+
 def _refused(action):
     try:
         action()
@@ -188,6 +306,16 @@ BAD = [
      r"dem\.tangential_restitution: only the hard-sphere engine takes beta_0"),
     ("beta_0 above 1", ("run:", "dem: {engine: hard_sphere, tangential_restitution: 1.5}\nrun:"),
      r"dem\.tangential_restitution: 1\.5 is outside \[0, 1\]"),
+    ("a hard-sphere key for soft spheres", ("run:", "dem: {elastic_within: 0}\nrun:"),
+     r"dem\.elastic_within: only the hard-sphere engine takes it"),
+    ("a misspelt hard-sphere key", ("run:", "dem: {engine: hard_sphere, elastic_whithin: 0}\nrun:"),
+     r"dem\.elastic_whithin: unknown key \(did you mean 'elastic_within'\?\)"),
+    ("move not true or false", ("run:", "dem: {engine: hard_sphere, move: 1}\nrun:"),
+     r"dem\.move: 1 is not true or false"),
+    ("collisions per particle not whole", ("run:", "dem: {engine: hard_sphere, max_collisions_per_particle: 2.5}\nrun:"),
+     r"dem\.max_collisions_per_particle: 2\.5 is not a whole number"),
+    ("a contact gap above 1", ("run:", "dem: {engine: hard_sphere, contact_gap: 2}\nrun:"),
+     r"dem\.contact_gap: 2 is outside \[0, 1\]"),
     ("ten sizes", ("sizes: [{diameter: 0.001, number: 800}]",
                    "sizes: [" + ", ".join(f"{{diameter: {0.0005 + 0.0001 * k:g}, number: 8}}" for k in range(10)) + "]"),
      r"particles\.sizes: expected a list of 1 to 9 sizes"),
@@ -223,6 +351,11 @@ def main_test():
         check_three_sizes(root)
         check_hard_sphere(root)
         check_refusals(root)
+        check_shallow_bed(root)
+        check_jets(root)
+        check_untested(root)
+        check_hard_sphere_keys(root)
+    check_small_ones()
     if failures:
         print(f"{len(failures)} check(s) failed: {', '.join(failures)}")
         sys.exit(1)

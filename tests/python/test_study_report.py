@@ -23,7 +23,7 @@ import tempfile
 import numpy
 
 from tfdem.bed import (BedOutputs, cross_l1, l1_noise_floor, l1_permutation_test, mirror_mean, pairwise_l1,
-                       row_pressure_drop, write_bed_probes)
+                       section_pressure_drop, write_bed_probes)
 from tfdem.case import Case
 from tfdem.stats import (autocorrelation, blocking_curve, chi_square_quantile, difference, ensemble,
                          integrated_autocorrelation_time, sokal_window, spread_ratio_range)
@@ -222,9 +222,12 @@ def check_chi_square():
 
 
 def check_maps():
+    heights = [0.05] * 3 + [0.25] * 3
     check("Delta p: bottom row mean minus upper row mean",
-          numpy.allclose(row_pressure_drop([[100, 110, 120, 10, 20, 60], [5, 5, 5, 1, 2, 3]], 3), [80, 3]))
-    check("Delta p: a sample of the wrong width refused", raises(row_pressure_drop, [[1, 2, 3, 4]], 3) is not None)
+          numpy.allclose(section_pressure_drop([[100, 110, 120, 10, 20, 60], [5, 5, 5, 1, 2, 3]], heights,
+                                               (0.05, 0.25)), [80, 3]))
+    check("Delta p: a sample of the wrong width refused",
+          raises(section_pressure_drop, [[1, 2, 3, 4]], heights, (0.05, 0.25)) is not None)
     check("mirror mean", numpy.allclose(mirror_mean(numpy.array([[1.0, 2, 3], [4, 0, 6]])), [[2, 2, 2], [5, 0, 5]]))
     maps = [numpy.full((2, 2), v) for v in (0.0, 0.1, 0.3)]
     maps[2][1] = 9.0  # the second row differs wildly: left out with rows = 1
@@ -265,9 +268,12 @@ def check_bed_outputs(root):
     check("probes: the upper row 20 cm above the bottom row's centres", "(0.005 0.25 0.005)" in text
           and "(0.025 0.05 0.005)" in text and "writeInterval 10;" in text)
     post = os.path.join(case_dir, "postProcessing")
-    write(os.path.join(post, "studyPressure", "0", "p"), "# Time p\n0.01 100 110 120 10 20 60\n0.02 7 8 9 1 2 3\n")
+    rows = "".join(f"# Probe {k} ({x} {y} 0.005)\n" for k, (y, x) in enumerate(
+        (y, x) for y in (0.05, 0.25) for x in (0.005, 0.015, 0.025)))
+    write(os.path.join(post, "studyPressure", "0", "p"), rows + "# Time p\n0.01 100 110 120 10 20 60\n0.02 7 8 9 1 2 3\n")
+    cells = "".join(f"# Probe {k} ({c[0]} {c[1]} {c[2]})\n" for k, c in enumerate(case.grid().centres()))
     for field in ("voidFraction", "contactForceByWeight", "dragForceByWeight"):
-        write(os.path.join(post, "studyFields", "0", field), "# Time\n0.05" + " 0.5" * 9 + "\n")
+        write(os.path.join(post, "studyFields", "0", field), cells + "# Time\n0.05" + " 0.5" * 9 + "\n")
     write(os.path.join(post, "tfdemParticles", "0", "particles.dat"), "# t\n0.01 10 0.1 0.05 1.0 0.5\n")
     d = BedOutputs(case)
     check("BedOutputs: Delta p at 20 cm from the two rows", numpy.allclose(d.dp, [80, 6]) and numpy.allclose(d.p_t, [0.01, 0.02]),

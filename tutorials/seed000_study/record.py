@@ -70,7 +70,7 @@ class Record:
         fields = (TFM_MAPS if d.tfm else TFDEM_MAPS) + (("theta",) if d.theta is not None else ())
         maps = {window_key(*w): {f: d.field_average(getattr(d, f), *w) for f in fields} for w in windows}
         record = cls(d.name, meta, (numpy.asarray(d.p_t), numpy.asarray(d.dp)), heights, maps)
-        centres = numpy.array([c[:2] for c in grid.centres()])
+        centres = numpy.array([c[:2] for c in grid.centres()[:grid.counts[0] * grid.counts[1]]])  # the front layer: x, y
         if not numpy.allclose(centres[:, 0], record.x.ravel()) or not numpy.allclose(centres[:, 1], record.y.ravel()):
             raise RecordError(f"{d.name}: its grid is not uniform; a record keeps only counts, origin and spacing")
         return record
