@@ -133,7 +133,7 @@ void Foam::TfdemRanks::finish()
 }
 
 
-void Foam::TfdemRanks::checkTime(Time& runTime)
+void Foam::TfdemRanks::checkTime(TfdemTime& runTime)
 {
     if (!gasWhole_)
     {
@@ -158,7 +158,7 @@ void Foam::TfdemRanks::checkTime(Time& runTime)
     }
     if (!writesGas())
     {
-        runTime.functionObjects().off();
+        runTime.quiet();
     }
     Info<< "TFDEM ranks: the gas whole on each of " << count() << " ranks (rank 0 writes),"
         << " the particles split by LIGGGHTS" << nl << endl;

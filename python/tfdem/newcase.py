@@ -1073,7 +1073,7 @@ case "$ranks" in ''|*[!0-9]*|0|00*) echo "$0: MPI ranks '$ranks': give a whole n
 args=()
 layout=whole
 if [ "$ranks" -gt 1 ]; then
-    cells=$(sed -n 's/.*nCells: *\([0-9]*\).*/\1/p' constant/polyMesh/owner | head -n 1)
+    cells=$(sed -n 's/.*nCells: *\\([0-9]*\\).*/\\1/p' constant/polyMesh/owner | head -n 1)
     layout=${{TFDEM_GAS_LAYOUT:-$(tfdem-gas-layout "$cells" "$ranks")}}
     case "$layout" in whole|split) ;; *) echo "TFDEM_GAS_LAYOUT=$layout: give whole or split" >&2; exit 2 ;; esac
 fi
@@ -1084,6 +1084,10 @@ else   # a checkpoint written split made whole
     "$TFDEM_PYTHON" -m tfdem.run reconstruct . > log.reconstruct
 fi
 [ -f log.tfdemFoam ] && mv log.tfdemFoam "log.tfdemFoam.$(date +%Y%m%d-%H%M%S)"
+# Ctrl-C or SIGTERM (timeout, a batch system) reach tfdem-solve too, which has the run write a
+# checkpoint and stop; this script waits for that and says so (a handler, not an ignore: the
+# children must still see them)
+trap ':' INT TERM
 status=0
 tfdem-solve log.tfdemFoam "$ranks" "${{args[@]}}" || status=$?
 [ "$status" -eq 75 ] && echo "$0: stopped at a checkpoint; ./Allrun $ranks carries on from it"
