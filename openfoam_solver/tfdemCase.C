@@ -175,6 +175,45 @@ void Foam::TfdemCase::checkControlDict(const argList& args)
         FatalIOErrorInFunction(control)
             << "deltaT must be a positive time step (s)" << exit(FatalIOError);
     }
+    if (args.parRunControl().parRun() && control.getOrDefault<word>("startFrom", "") == "latestTime")
+    {
+        checkSplitTimes(args.rootPath()/args.globalCaseName());
+    }
+}
+
+
+void Foam::TfdemCase::checkSplitTimes(const fileName& root)
+{
+    // Each processor folder's newest time (OpenFOAM's own message would say only that the
+    // start times differ)
+    word newest, newestAt, oldest, oldestAt;
+    for (const fileName& name : readDir(root, fileName::DIRECTORY))
+    {
+        if (name.size() < 10 || name.compare(0, 9, "processor") != 0) continue;
+        scalar latest = -1;
+        word latestName;
+        for (const fileName& t : readDir(root/name, fileName::DIRECTORY))
+        {
+            scalar value;
+            if (readScalar(t, value) && value > latest)
+            {
+                latest = value;
+                latestName = t;
+            }
+        }
+        if (newest.empty() || latest > std::stod(newest)) newest = latestName, newestAt = name;
+        if (oldest.empty() || latest < std::stod(oldest)) oldest = latestName, oldestAt = name;
+    }
+    if (!newest.empty() && newest != oldest)
+    {
+        FatalErrorInFunction
+            << "the split gas's folders end at different times: " << newestAt << "/" << newest
+            << " is the newest, " << oldestAt << " has nothing after " << oldest << " (its "
+            << newest << " deleted, or never written by a run killed while writing). Fix: tfdem"
+            << " resume " << root << " moves the unfinished time aside and resumes from the"
+            << " newest checkpoint every folder holds; or restore " << oldestAt << "/" << newest
+            << exit(FatalError);
+    }
 }
 
 

@@ -17,6 +17,7 @@ import time
 import tfdem.run
 from tfdem import outputs
 from tfdem.case import Case
+from tfdem.errors import Reported
 from tfdem.frontdoor import write_text_atomic
 from tfdem.inputs import positive_count, positive_number
 from tfdem.run import environment
@@ -25,7 +26,7 @@ STATUS = "study.status.json"
 STOPPED_AT_CHECKPOINT = 75  # tfdemFoam's exit status when a signal stopped it at a checkpoint (tfdemStop.H)
 
 
-class BatchError(Exception):
+class BatchError(Reported):
     """A batch definition or run problem, named."""
 
 

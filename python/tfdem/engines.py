@@ -8,11 +8,12 @@ import os
 import yaml
 
 from tfdem.case import Case, read_data_file, sphere_volume
+from tfdem.errors import Reported
 
 CONTACT_PROPERTIES = ("kn", "kt", "gamman_abs", "gammat_abs", "coefficientFriction")
 
 
-class ScriptError(Exception):
+class ScriptError(Reported):
     """A DEM script or data file the hard-sphere laws cannot be derived from, named."""
 
 

@@ -15,7 +15,7 @@ import sys
 import tempfile
 import traceback
 
-from tfdem.inputs import InputError
+from tfdem.errors import Reported
 
 DEBUG_ENV = "TFDEM_DEBUG"
 
@@ -31,15 +31,6 @@ FIXES = {
     errno.EEXIST: "it exists already: give another name, or remove it first",
     errno.ENOTEMPTY: "the folder is not empty: give another name, or remove it first",
 }
-
-
-def known_errors():
-    """The exception classes whose message is the whole story (exit 2)."""
-    from tfdem.batch import BatchError
-    from tfdem.engines import ScriptError
-    from tfdem.outputs import OutputError
-    from tfdem.run import RunError
-    return (InputError, RunError, BatchError, ScriptError, OutputError)
 
 
 @contextlib.contextmanager
@@ -91,7 +82,7 @@ def run_command(name, body, argv=None, known=()):
             raise
         print(f"{name}: stopped", file=sys.stderr)
         return 130
-    except known_errors() + tuple(known) as e:
+    except (Reported,) + tuple(known) as e:
         if debug:
             traceback.print_exc()
         return _print(name, str(e), 2)

@@ -23,8 +23,10 @@ import re
 
 import yaml
 
+from tfdem.errors import Reported
 
-class InputError(Exception):
+
+class InputError(Reported):
     """An input is wrong; the message is 'file: key: value: what is expected / the fix'."""
 
 

@@ -8,8 +8,10 @@ import glob
 import os
 import re
 
+from tfdem.errors import Reported
 
-class OutputError(Exception):
+
+class OutputError(Reported):
     """An expected output is missing or malformed; the message names the file."""
 
 

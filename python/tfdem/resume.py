@@ -5,7 +5,8 @@
 A coupled run writes a joint checkpoint at every write time and when a signal stops it, each
 completed by its marker, <time>/tfdem.checkpoint, written last (openfoam_solver/
 tfdemCheckpoint.H). A time folder after the newest marked one was being written when the run
-was killed (SIGKILL, a node lost, a disk that filled): it is moved aside, whole, into
+was killed (SIGKILL, a node lost, a disk that filled), as is a split checkpoint one of whose
+processor*/<time> folders is gone: it is moved aside, whole, into
 CASE/incomplete/<time>/ (its processor*/<time> folders beside it as processor*-<time>), never
 deleted, and named. Then system/controlDict gets startFrom latestTime when a checkpoint is
 left, startTime otherwise. The solver itself verifies the checkpoint it starts from (every
@@ -14,6 +15,7 @@ that verifies when it does not.
 """
 import argparse
 import os
+import re
 
 from tfdem.case import Case, CaseError
 from tfdem.frontdoor import add_debug_option, doing, run_command
@@ -23,9 +25,24 @@ MARKER = "tfdem.checkpoint"
 INCOMPLETE = "incomplete"
 
 
+def complete(case_path, time_name):
+    """Whether a time folder is a whole checkpoint: its marker written, and, when the marker
+    says the gas was split over N ranks, processor0 ... processor<N-1> holding that time."""
+    marker = os.path.join(case_path, time_name, MARKER)
+    if not os.path.isfile(marker):
+        return False
+    with open(marker, errors="replace") as f:
+        text = f.read()
+    split = re.search(r"(?m)^layout\s+split;", text)
+    ranks = re.search(r"(?m)^ranks\s+(\d+);", text)
+    if not (split and ranks):
+        return True
+    return all(os.path.isdir(os.path.join(case_path, f"processor{r}", time_name)) for r in range(int(ranks.group(1))))
+
+
 def checkpoints(case_path):
-    """The case's time folders completed by a marker, oldest first (names)."""
-    return [t for t in times(case_path) if os.path.isfile(os.path.join(case_path, t, MARKER))]
+    """The case's whole checkpoints, oldest first (time names)."""
+    return [t for t in times(case_path) if complete(case_path, t)]
 
 
 def incomplete_folders(case_path, after):
@@ -71,8 +88,8 @@ def prepare(case_path):
     lines = []
     moved = set_aside(case_path, incomplete_folders(case_path, newest))
     if moved:
-        lines.append(f"set aside {len(moved)} time folder(s) written after the newest checkpoint and never "
-                     f"completed (a run killed while writing them): {', '.join(moved)}")
+        lines.append(f"set aside {len(moved)} time folder(s) after the newest whole checkpoint, never completed "
+                     f"(a run killed while writing them) or missing a processor's part: {', '.join(moved)}")
     if newest is not None:
         case.set_control(startFrom="latestTime")
         lines.append(f"resuming from the checkpoint at t = {newest} s")

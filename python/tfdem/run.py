@@ -5,11 +5,12 @@ import subprocess
 
 from tfdem import BUILD_DIR, SOURCE_DIR
 from tfdem.case import CaseError
+from tfdem.errors import Reported
 from tfdem.frontdoor import run_command, write_text_atomic
 from tfdem.outputs import times
 
 
-class RunError(Exception):
+class RunError(Reported):
     """A program exited non-zero; the message names it, its exit code and its log."""
 
 

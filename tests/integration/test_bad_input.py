@@ -217,6 +217,20 @@ def killed_while_writing(c):
     os.remove(os.path.join(c, "0.02", "tfdem.checkpoint"))
 
 
+def processor_time_deleted(c):
+    """The settling case run split on 2 ranks to 0.02 s (checkpoints at 0.01 and 0.02 s), then
+    processor1/0.02 deleted and the case set to resume to 0.03 s."""
+    case = Case(c)
+    case.set_control(endTime=0.02, writeInterval=0.01, writePrecision=17)
+    write_decompose_dict(c, (1, 2, 1))
+    probe.run(["decomposePar", "-force"], c, "log.decomposePar")
+    code, output, _ = probe.run(["tfdemFoam"], c, "log.split", 2, "split")
+    assert code == 0, output[-2000:]
+    shutil.rmtree(os.path.join(c, "processor1", "0.02"))
+    case.set_control(endTime=0.03, startFrom="latestTime")
+    return {"ranks": 2, "gas": "split"}
+
+
 # -- files, disk and locks -----------------------------------------------------------------------
 
 class NeedsRoot(Exception):
@@ -459,6 +473,8 @@ DEM = [
 ]
 
 GAS = [
+    ("a processor's newest time deleted", processor_time_deleted,
+     ["processor0/0.02 is the newest, processor1 has nothing after 0.01", "tfdem resume", "restore processor1/0.02"]),
     ("coupling interval does not divide the gas step",
      in_case(os.path.join("system", "controlDict"), "deltaT          1e-3;", "deltaT          1.5e-3;"),
      ["deltaT = 0.0015 s must equal dem.coupling_interval x DEM timestep = 10 x 0.0001 = 0.001 s"]),

@@ -58,6 +58,17 @@ with tempfile.TemporaryDirectory() as tmp:
     prepare(root)
     check("a second 0.25 kept beside the first", os.path.isdir(os.path.join(root, "incomplete", "0.25.2")))
 
+    root = case(os.path.join(tmp, "s"), ["0.1", "0.2"], [], processors=2)
+    for t in ("0.1", "0.2"):
+        open(os.path.join(root, t, "tfdem.checkpoint"), "w").write("layout           split;\nranks            2;\n")
+    shutil.rmtree(os.path.join(root, "processor1", "0.2"))
+    lines = prepare(root)
+    check("a split checkpoint missing processor1/0.2: resumes from 0.1", any("t = 0.1 s" in line for line in lines),
+          str(lines))
+    check("its remaining parts moved aside",
+          os.path.isdir(os.path.join(root, "incomplete", "0.2")) and
+          os.path.isdir(os.path.join(root, "incomplete", "processor0-0.2")))
+
     root = case(os.path.join(tmp, "b"), [], ["0.05"])
     lines = prepare(root)
     check("no checkpoint: startFrom startTime", start_from(root) == "startTime")
