@@ -294,7 +294,7 @@ bool Foam::TfdemCase::coupled(const Time& runTime)
         << "no " << couplingFileName << " in " << dir << ", but the case is set up for"
         << " particles:" << list.c_str() << "\nWithout " << couplingFileName << " the gas would"
         << " run alone, as if the bed were empty. Fix: restore " << couplingFileName
-        << " (the coupling settings; see the README), or, for a gas-only run, remove the"
+        << " (the coupling settings; docs/src/reference/coupling-yaml.md), or, for a gas-only run, remove the"
         << " particle files named above" << exit(FatalError);
     return false;
 }

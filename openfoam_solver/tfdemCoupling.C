@@ -7,9 +7,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "dem_instance.h"
-#include "tfdem/hard_sphere/engine.h"
 #include "tfdem/distributed_coupling.h"
+#include "tfdem/engine_registry.h"
 #include "tfdemFailure.H"
 #include "tfdemOutlets.H"
 #include "tfdemParticleAccounting.H"
@@ -38,6 +37,30 @@ const double* flatComponents(const Foam::volVectorField& field)
     return reinterpret_cast<const double*>(field.primitiveField().cdata());
 }
 
+// The fastest inflow: the largest |U| on the patches where U is fixed and gas flows in (an
+// outlet's velocity, fixed by its condition on a resumed run, is no inflow)
+Foam::scalar largestInflowSpeed(const Foam::volVectorField& U)
+{
+    Foam::scalar fastest = 0;
+    forAll(U.boundaryField(), patchi)
+    {
+        const Foam::fvPatchVectorField& Ub = U.boundaryField()[patchi];
+        const Foam::scalar inflow = -Foam::gSum(Ub & U.mesh().Sf().boundaryField()[patchi]);
+        if (Ub.fixesValue() && inflow > 0)
+        {
+            fastest = Foam::max(fastest, Foam::gMax(Foam::mag(Ub)));
+        }
+    }
+    return fastest;
+}
+
+// The speed of a free fall over the domain's extent along gravity: an impact any bed sees.
+Foam::scalar fallSpeed(const Foam::volVectorField& U, const Foam::vector& g)
+{
+    const Foam::boundBox domain(U.mesh().points(), true);
+    return Foam::mag(g) > 0 ? std::sqrt(2*Foam::mag(g)*Foam::mag(domain.span() & (g/Foam::mag(g)))) : 0;
+}
+
 } // End anonymous namespace
 
 
@@ -48,6 +71,9 @@ Foam::TfdemCoupling::TfdemCoupling
     const volVectorField& pressureGradient,
     const volVectorField& gasVelocity,
     volScalarField& voidFraction,
+    surfaceScalarField& voidFractionFaces,
+    surfaceScalarField& voidFractionFlux,
+    const surfaceScalarField& flux,
     volScalarField& exchangeCoefficient,
     volVectorField& solidVelocity,
     const dimensionedScalar& rho,
@@ -60,6 +86,9 @@ Foam::TfdemCoupling::TfdemCoupling
     pressureGradient_(pressureGradient),
     gasVelocity_(gasVelocity),
     voidFraction_(voidFraction),
+    voidFractionFaces_(voidFractionFaces),
+    voidFractionFlux_(voidFractionFlux),
+    flux_(flux),
     exchangeCoefficient_(exchangeCoefficient),
     solidVelocity_(solidVelocity),
     checkpoint_(checkpoint),
@@ -119,12 +148,7 @@ Foam::TfdemCoupling::TfdemCoupling
     startDem(g.value());
     tfdemChecks::particles(config_, *dem_);
     tfdemChecks::packing(*dem_, g.value(), !checkpoint_.resuming());
-    if (const auto* soft = dynamic_cast<const tfdem::DemInstance*>(dem_.get()))
-    {
-        tfdemChecks::gravity(g, *soft);
-        tfdemChecks::timeSteps(mesh.time(), config_, *soft, gasVelocity, g.value());
-        tfdemChecks::scene(config_, grid_.grid, *soft, gasVelocity, g.value());
-    }
+    checkEngine(gasVelocity, g.value());
     outlets_.reset
     (
         new TfdemOutlets
@@ -166,7 +190,7 @@ Foam::TfdemCoupling::~TfdemCoupling()
 
 Foam::fileName Foam::TfdemCoupling::demLog() const
 {
-    return mesh_.time().globalPath()/"log.liggghts";
+    return mesh_.time().globalPath()/("log." + config_.engine);
 }
 
 
@@ -174,116 +198,66 @@ void Foam::TfdemCoupling::startDem(const vector& g)
 {
     // Files by their names in coupling.yaml: the case is the working directory (TfdemCase)
     const tfdem::DemResume resume = checkpoint_.demResume();
-    const tfdem::DemResume* resumed = checkpoint_.resuming() ? &resume : nullptr;
-    const std::string engine =
-        config_.engine == tfdem::Engine::HardSphere ? "hard_sphere" : "liggghts";
-    if (resumed && !resume.engine.empty() && resume.engine != engine)
+    if (checkpoint_.resuming() && !resume.engine.empty() && resume.engine != config_.engine)
     {
         FatalErrorInFunction
             << "the checkpoint at t = " << mesh_.time().timeName() << " s was written by the "
             << resume.engine.c_str() << " engine (its marker's engine entry) but "
-            << config_.file.c_str() << " has dem.engine: " << engine.c_str() << ". Fix: resume"
-            << " it with dem.engine: " << resume.engine.c_str() << ", or start afresh with "
-            << engine.c_str() << " (delete the time folders after the first)"
+            << config_.file.c_str() << " has dem.engine: " << config_.engine.c_str() << ". Fix:"
+            << " resume it with dem.engine: " << resume.engine.c_str() << ", or start afresh"
+            << " with " << config_.engine.c_str() << " (delete the time folders after the first)"
             << exit(FatalError);
     }
-    if (config_.engine == tfdem::Engine::HardSphere)
+    tfdem::EngineStart start;
+    start.communicator = MPI_Comm_c2f(demComm_);
+    start.config = &config_;
+    start.resume = checkpoint_.resuming() ? &resume : nullptr;
+    for (direction a = 0; a < 3; ++a)
     {
-        if (TfdemRanks::count() > 1)
-        {
-            FatalErrorInFunction
-                << config_.file.c_str() << ": dem.engine: hard_sphere runs on one rank (its"
-                << " event-driven collisions are processed one after another), not on "
-                << TfdemRanks::count() << ": run tfdemFoam without mpirun, or use dem.engine:"
-                << " liggghts" << exit(FatalError);
-        }
-        const double gravity[3] = {g.x(), g.y(), g.z()};
-        try
-        {
-            dem_.reset
-            (
-                new tfdem::hard_sphere::HardSphereEngine
-                (
-                    config_.hard_sphere, config_.dem_particles, gravity, resumed
-                )
-            );
-        }
-        catch (const std::exception& e)
-        {
-            FatalErrorInFunction << config_.file.c_str() << ": " << e.what() << exit(FatalError);
-        }
-        Info<< "TFDEM coupling: " << dem_->global_count() << " particles in "
-            << dem_->name().c_str() << " (" << config_.dem_particles.c_str() << "), one flow step"
-            << " per gas step of " << mesh_.time().deltaTValue() << " s, gravity " << g
-            << " m/s^2 (constant/g)" << endl;
-        const auto& hard = static_cast<const tfdem::hard_sphere::HardSphereEngine&>(*dem_);
-        if (hard.overlaps().pairs + hard.overlaps().walls > 0)
-        {
-            Info<< "TFDEM hard spheres: " << label(hard.overlaps().pairs) << " overlapping pairs"
-                << " and " << label(hard.overlaps().walls) << " spheres into a wall in "
-                << config_.dem_particles.c_str() << " (deepest "
-                << 100*hard.overlaps().deepest << " % of a diameter) taken as touching where"
-                << " they are" << endl;
-        }
-        Info<< endl;
-        return;
+        start.gravity[a] = g[a];
     }
+    start.gas_step = mesh_.time().deltaTValue();
+    start.log_file = demLog();
     try
     {
-        dem_.reset
-        (
-            new tfdem::DemInstance(demComm_, config_.dem_script, demLog(), resumed)
-        );
+        dem_ = tfdem::find_engine(config_.engine)->start(start);
     }
     catch (const std::exception& e)
     {
-        FatalErrorInFunction
-            << config_.file.c_str() << ": dem.script: " << e.what() << exit(FatalError);
+        FatalErrorInFunction << config_.file.c_str() << ": " << e.what() << exit(FatalError);
     }
-    for (const std::string& name : dem_->unresumable_outputs())
-    {
-        if (checkpoint_.resuming())
-        {
-            Info<< "TFDEM warning: " << name.c_str() << ": an output named by a pattern or a"
-                << " variable is not cut back to the checkpoint (files written after it by"
-                << " the stopped run stay until written again)" << endl;
-        }
-    }
-    Info<< "TFDEM coupling: " << dem_->global_count() << " particles, DEM step "
-        << static_cast<const tfdem::DemInstance&>(*dem_).time_step() << " s, "
-        << tfdemChecks::couplingInterval
-           (
-               config_, mesh_.time().deltaTValue(),
-               static_cast<const tfdem::DemInstance&>(*dem_).time_step()
-           )
-        << " DEM steps per gas step" << nl << endl;
-    demBalance();
 }
 
 
-void Foam::TfdemCoupling::demBalance() const
+void Foam::TfdemCoupling::checkEngine(const volVectorField& U, const vector& g) const
 {
-    if (TfdemRanks::count() < 2)
+    tfdem::CaseAtStart context;
+    context.config = &config_;
+    for (direction a = 0; a < 3; ++a)
     {
-        return;
+        context.gravity[a] = g[a];
+        context.cell_size[a] = grid_.grid.spacing[a];
     }
-    const std::array<int, 3> grid =
-        static_cast<const tfdem::DemInstance&>(*dem_).processor_grid();
-    double most = dem_->local_count(), least = most, total = most;
-    MPI_Allreduce(MPI_IN_PLACE, &most, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
-    MPI_Allreduce(MPI_IN_PLACE, &least, 1, MPI_DOUBLE, MPI_MIN, MPI_COMM_WORLD);
-    MPI_Allreduce(MPI_IN_PLACE, &total, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
-    const double mean = total/TfdemRanks::count();
-    Info<< "TFDEM parallel: LIGGGHTS' processor grid " << grid[0] << " x " << grid[1] << " x "
-        << grid[2] << " (even cuts of the box): particles per rank " << least << " to " << most
-        << ", mean " << mean;
-    if (mean > 0 && most > kDemImbalance*mean)
+    context.gas_step = mesh_.time().deltaTValue();
+    context.adjustable_gas_step =
+        mesh_.time().controlDict().lookupOrDefault<Switch>("adjustTimeStep", false);
+    context.fastest_inflow = largestInflowSpeed(U);
+    context.fall_speed = fallSpeed(U, g);
+    context.resuming = checkpoint_.resuming();
+    const tfdem::StartReport report = dem_->check_start(context);
+    for (const std::string& line : report.lines)
     {
-        Info<< ". TFDEM advice: the fullest rank holds " << most/mean << " times the mean and"
-            << " the others wait for it every DEM step (its cuts leave ranks in the freeboard)."
-            << " Fix: cut only across the bed (processors * 1 1; * 1 * for a 3-D bed)";
+        Info<< line.c_str() << endl;
     }
-    Info<< nl << endl;
+    for (const std::string& warning : report.warnings)
+    {
+        Info<< "TFDEM warning: " << warning.c_str() << endl;
+    }
+    if (!report.refusal.empty())
+    {
+        FatalErrorInFunction << report.refusal.c_str() << exit(FatalError);
+    }
+    Info<< endl;
 }
 
 
@@ -319,7 +293,7 @@ void Foam::TfdemCoupling::evolve()
     }
     tfdemFailure::enter(tfdemFailure::Phase::coupling, runTime.value());
     const TfdemOutlets::Removed removed = outlets_->remove(*dem_);
-    accounting_->check(*dem_, runTime.value(), removed.tags, removed.mass, demLog() + ".screen");
+    accounting_->check(*dem_, runTime.value(), removed.tags, removed.mass);
     report_.addSeconds(TfdemRunReport::Part::dem, secondsSince(start));
 
     const tfdem::ParticleView view = particles();
@@ -332,6 +306,8 @@ void Foam::TfdemCoupling::evolve()
         statistics_->record(runTime, *dem_, view, *core_);
         report_.addSeconds(TfdemRunReport::Part::statistics, secondsSince(start));
     }
+    voidFractionFaces_ = fvc::interpolate(voidFraction_);
+    voidFractionFlux_ = voidFractionFaces_*flux_;
 }
 
 
@@ -451,8 +427,9 @@ void Foam::TfdemCoupling::stopOnEmptyGas(const tfdem::ParticleView& view) const
 }
 
 
-void Foam::TfdemCoupling::gasSolved()
+void Foam::TfdemCoupling::gasSolved(double seconds)
 {
+    report_.addSeconds(TfdemRunReport::Part::gas, seconds);
     const vector gasReceived =
         gSum(mesh_.V().field()*exchangeCoefficient_.primitiveField()*(gasVelocity_.primitiveField() - solidVelocity_.primitiveField()));
     report_.momentumExchange
@@ -462,8 +439,10 @@ void Foam::TfdemCoupling::gasSolved()
 }
 
 
-void Foam::TfdemCoupling::write(bool gasWritten)
+void Foam::TfdemCoupling::write()
 {
+    checkpoint_.checkDiskSpace();
+    const bool gasWritten = !TfdemRanks::writesGas() || mesh_.time().write();
     const Clock::time_point start = Clock::now();
     outlets_->write(mesh_.time());
     checkpoint_.write(*dem_, accounting_->totals(), gasWritten);
@@ -473,15 +452,10 @@ void Foam::TfdemCoupling::write(bool gasWritten)
 
 void Foam::TfdemCoupling::report() const
 {
-    if (const auto* hard = dynamic_cast<const tfdem::hard_sphere::HardSphereEngine*>(dem_.get()))
+    const std::string engineReport = dem_->end_report();
+    if (!engineReport.empty())
     {
-        const tfdem::hard_sphere::FlightCounts& c = hard->totals();
-        Info<< "TFDEM hard spheres: " << label(c.pair) << " pair and " << label(c.wall)
-            << " wall collisions (" << label(c.elastic) << " made elastic by the TC model), "
-            << label(c.predictions) << " event predictions, " << label(c.list_builds)
-            << " builds of all neighbour lists and " << label(c.lists_renewed)
-            << " of one particle's over " << std::to_string(hard->step()).c_str()
-            << " flow steps" << endl;
+        Info<< engineReport.c_str() << endl;
     }
     report_.report
     (

@@ -99,13 +99,7 @@ int main(int argc, char *argv[])
 
         Info<< "Time = " << runTime.timeName() << nl << endl;
 
-        if (coupling.valid())
-        {
-            coupling->evolve();
-            tfdemFailure::enter(tfdemFailure::Phase::coupling, runTime.value());
-            voidFractionf = fvc::interpolate(voidFraction);
-            voidFractionPhi = voidFractionf*phi;
-        }
+        particlePhase->evolve();
 
         const auto gasStart = std::chrono::steady_clock::now();
         tfdemFailure::enter(tfdemFailure::Phase::gas, runTime.value());
@@ -118,50 +112,24 @@ int main(int argc, char *argv[])
                 #include "pEqn.H"
             }
         }
-
-        if (coupling.valid())
-        {
-            coupling->addGasSeconds
-            (
-                std::chrono::duration<double>
-                (
-                    std::chrono::steady_clock::now() - gasStart
-                ).count()
-            );
-            coupling->gasSolved();
-        }
+        particlePhase->gasSolved
+        (
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - gasStart).count()
+        );
 
         if (runTime.writeTime())
         {
             tfdemFailure::enter(tfdemFailure::Phase::writing, runTime.value());
-            if (coupling.valid())
-            {
-                coupling->checkDiskSpace();
-            }
-            const bool written = !TfdemRanks::writesGas() || runTime.write();
-            if (coupling.valid())
-            {
-                coupling->write(written);
-            }
-            else
-            {
-                TfdemCase::written(runTime, written, "Its fields were not written whole.");
-            }
+            particlePhase->write();
         }
 
-        if (coupling.valid())
-        {
-            coupling->progress(CoNum);
-        }
+        particlePhase->progress(CoNum);
 
         runTime.printExecutionTime(Info);
     }
 
-    if (coupling.valid())
-    {
-        coupling->report();
-    }
-    coupling.clear();
+    particlePhase->report();
+    particlePhase.clear();
 
     if (tfdemStop::signal())
     {

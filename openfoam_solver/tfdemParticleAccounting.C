@@ -64,8 +64,7 @@ void Foam::TfdemParticleAccounting::check
     const tfdem::ParticleEngine& dem,
     scalar t,
     const std::vector<int>& removedTags,
-    scalar removedMass,
-    const fileName& demLog
+    scalar removedMass
 )
 {
     const ParticleTotals now = count(dem);
@@ -89,12 +88,7 @@ void Foam::TfdemParticleAccounting::check
         << t << " s (" << totals_.mass - now.mass << " kg), not through an outlet."
         << nl << "Lost particles (at most " << namedLostParticles << " per rank), at their"
         << " last position before:" << nl << named.c_str()
-        << "LIGGGHTS drops particles that leave its domain. Likely causes: a contact that"
-        << " blew up (DEM step too large for k_n, or the damping; see the contact-time"
-        << " lines above), a particle pushed through a wall, or an open side of the DEM's"
-        << " box. Particles meant to leave through a gas outlet need it in coupling.yaml"
-        << " dem.outlets and a DEM box that reaches beyond it (LIGGGHTS boundary m)."
-        << " DEM log: " << demLog << exit(FatalError);
+        << dem.lost_particles_hint().c_str() << exit(FatalError);
 }
 
 

@@ -8,12 +8,10 @@
 #include <sstream>
 #include <vector>
 
-#include "dem_instance.h"
 #include "tfdemRanks.H"
-#include "tfdem/contact.h"
 #include "tfdem/packing_check.h"
+#include "tfdem/particle_engine.h"
 #include "tfdem/particles.h"
-#include "tfdem/scene_check.h"
 
 namespace
 {
@@ -148,7 +146,7 @@ void Foam::tfdemChecks::particles
     if (!(dMin > 0))
     {
         FatalErrorInFunction
-            << config.dem_script.c_str() << ": a particle has diameter " << dMin
+            << dem.name().c_str() << ": a particle has diameter " << dMin
             << " m; every DEM particle needs a positive diameter" << exit(FatalError);
     }
     if
@@ -159,8 +157,8 @@ void Foam::tfdemChecks::particles
     )
     {
         FatalErrorInFunction
-            << "particles disagree: the DEM (" << config.dem_script.c_str()
-            << " and its data file) has diameters " << dMin << " to " << dMax
+            << "particles disagree: the DEM (" << dem.name().c_str()
+            << ", its particles) has diameters " << dMin << " to " << dMax
             << " m and densities " << rhoMin << " to " << rhoMax << " kg/m^3; "
             << config.file.c_str() << " gives particles.diameter = "
             << diameterList(config).c_str() << " m, particles.density = "
@@ -170,43 +168,6 @@ void Foam::tfdemChecks::particles
 }
 
 
-namespace
-{
-
-// The deepest overlap, as a fraction of d, hard spheres start from without a warning
-constexpr double hardOverlapTolerated = 0.01;
-
-// Elastic energy (J) of an overlap `depth` between atom types a and b of radii ra, rb: linear
-// (1/2) k_n delta^2, Hertz (8/15) E* sqrt(R*) delta^(5/2) (the integral of the contact forces);
-// negative when the script gives neither model
-double overlapEnergy
-(
-    const tfdem::DemInstance& dem,
-    int a,
-    int b,
-    double ra,
-    double rb,
-    double depth
-)
-{
-    tfdem::DemInstance::LinearContact linear;
-    if (dem.linear_contact(a, b, linear))
-    {
-        return 0.5*linear.stiffness*depth*depth;
-    }
-    tfdem::DemInstance::HertzContact hertz;
-    if (dem.hertz_contact(a, b, hertz))
-    {
-        const double modulus = tfdem::contact::effective_modulus
-        (
-            hertz.young_a, hertz.poisson_a, hertz.young_b, hertz.poisson_b
-        );
-        return 8.0/15.0*modulus*std::sqrt(ra*rb/(ra + rb))*std::pow(depth, 2.5);
-    }
-    return -1;
-}
-
-} // End anonymous namespace
 
 
 void Foam::tfdemChecks::packing
@@ -267,9 +228,8 @@ void Foam::tfdemChecks::packing
     {
         return;
     }
-    const auto* soft = dynamic_cast<const tfdem::DemInstance*>(&dem);
     double energy = 0, lift = 0, smallest = GREAT;
-    bool known = soft != nullptr;
+    bool known = true;
     const tfdem::PackingCheck::Overlap* deepest = &check.overlaps.front();
     std::size_t deep = 0;
     for (const auto& o : check.overlaps)
@@ -277,10 +237,7 @@ void Foam::tfdemChecks::packing
         const double relative = o.depth/std::min(d[o.a], d[o.b]);
         if (relative > deepest->depth/std::min(d[deepest->a], d[deepest->b])) deepest = &o;
         if (relative > 0.01) ++deep;
-        const double e =
-            soft
-          ? overlapEnergy(*soft, type[o.a], type[o.b], 0.5*d[o.a], 0.5*d[o.b], o.depth)
-          : -1;
+        const double e = dem.overlap_energy(type[o.a], type[o.b], 0.5*d[o.a], 0.5*d[o.b], o.depth);
         known = known && e >= 0;
         energy += e;
     }
@@ -300,13 +257,10 @@ void Foam::tfdemChecks::packing
             << " energy that lifts the whole bed by one diameter";
     }
     Info<< endl;
-    if (!soft && relative > hardOverlapTolerated)
+    const std::string kept = dem.kept_overlaps_warning(relative);
+    if (!kept.empty())
     {
-        Info<< "TFDEM warning: the initial packing's pairs overlap up to " << 100*relative
-            << " % of d (a soft-sphere packing?): hard spheres do not push them apart, they"
-            << " stay so until the pairs part (and count in the gas fraction). Pack the bed"
-            << " with stiffer contacts, or let it settle in the hard-sphere engine first"
-            << endl;
+        Info<< "TFDEM warning: " << kept.c_str() << endl;
     }
     if (known && lift > 0 && energy > lift)
     {
@@ -316,30 +270,6 @@ void Foam::tfdemChecks::packing
             << " squeezed into too small a box, or made with stiffer contacts than this run's?"
             << " Pack it with this run's contacts (tfdem.packing, tutorials/poured_packing)"
             << endl;
-    }
-}
-
-
-void Foam::tfdemChecks::gravity
-(
-    const uniformDimensionedVectorField& g,
-    const tfdem::DemInstance& dem
-)
-{
-    double demGravity[3];
-    if (!dem.gravity(demGravity))
-    {
-        Info<< "TFDEM warning: the DEM script has no fix gravity: the particles feel no"
-            << " weight (the gas has constant/g = " << g.value() << " m/s^2)" << endl;
-        return;
-    }
-    const vector gDem(demGravity[0], demGravity[1], demGravity[2]);
-    if (mag(gDem - g.value()) > 1e-9*max(mag(g.value()), SMALL))
-    {
-        FatalErrorInFunction
-            << "gravity disagrees: constant/g is " << g.value()
-            << " m/s^2, the DEM script's fix gravity gives " << gDem
-            << " m/s^2. Make them equal." << exit(FatalError);
     }
 }
 
@@ -373,7 +303,7 @@ void Foam::tfdemChecks::inletVoidFraction
                 << " as interstitial (times the gas fraction of the cells behind it). Add "
                 << "0/voidFraction with " << name << " { type fixedValue; value uniform 1; }"
                 << " for a superficial inlet velocity (or zeroGradient for an interstitial"
-                << " one); see the README, Inflow" << exit(FatalError);
+                << " one); see docs/src/theory/gas.md, Inflow" << exit(FatalError);
         }
         const fvPatchScalarField& eb = voidFraction.boundaryField()[patchi];
         const bool superficial = eb.fixesValue() && gMin(eb) == 1 && gMax(eb) == 1;
@@ -382,313 +312,4 @@ void Foam::tfdemChecks::inletVoidFraction
                             : "interstitial (voidFraction not fixed at 1)")
             << ", inflow " << inflow << " m^3/s" << endl;
     }
-}
-
-
-namespace
-{
-
-// Smallest value of a per-particle property (mass, radius) of each atom type (index type - 1;
-// infinity: a type without particles, e.g. a wall material), over all ranks.
-std::vector<double> smallestOfType(const tfdem::DemInstance& dem, const double* values)
-{
-    std::vector<double> smallest(dem.type_count(), std::numeric_limits<double>::infinity());
-    for (std::size_t i = 0; i < dem.local_count(); ++i)
-    {
-        double& m = smallest[dem.types()[i] - 1];
-        m = std::min(m, values[i]);
-    }
-    MPI_Allreduce
-    (
-        MPI_IN_PLACE, smallest.data(), int(smallest.size()), MPI_DOUBLE, MPI_MIN,
-        MPI_COMM_WORLD
-    );
-    return smallest;
-}
-
-// The fastest inflow: the largest |U| on the patches where U is fixed.
-double largestInflowSpeed(const volVectorField& U)
-{
-    scalar fastest = 0;
-    forAll(U.boundaryField(), patchi)
-    {
-        if (U.boundaryField()[patchi].fixesValue())
-        {
-            fastest = max(fastest, gMax(mag(U.boundaryField()[patchi])));
-        }
-    }
-    return fastest;
-}
-
-// The speed of a free fall over the domain's extent along gravity: an impact any bed sees.
-double fallSpeed(const volVectorField& U, const vector& g)
-{
-    const boundBox domain(U.mesh().points(), true);
-    return mag(g) > 0 ? std::sqrt(2*mag(g)*mag(domain.span() & (g/mag(g)))) : 0;
-}
-
-// The fastest a particle may hit another or a wall: the fastest inflow, or the free fall.
-double largestImpactSpeed(const volVectorField& U, const vector& g)
-{
-    return max(largestInflowSpeed(U), fallSpeed(U, g));
-}
-
-// Past this overlap at the free fall's impact, as a fraction of the smaller diameter, soft
-// contacts let particles pass halfway through one another
-constexpr double largestSoundImpactOverlap = 0.5;
-
-// Reduced value (1/a + 1/b)^-1 of a contact's two sides (effective mass, effective radius);
-// a type without particles is a wall (infinite mass and radius).
-double reduced(double a, double b)
-{
-    if (std::isinf(a)) return b;
-    if (std::isinf(b)) return a;
-    return tfdem::contact::effective_mass(a, b);
-}
-
-// Contact time of atom types a and b between their lightest, smallest particles and what
-// it is (for the messages), and the deepest overlap of an elastic impact at each of
-// `speeds`; negative when the script gives no contact model we know.
-double contactTime
-(
-    const tfdem::DemInstance& dem,
-    int a,
-    int b,
-    double mEff,
-    double rEff,
-    double impactSpeed,
-    std::string& model,
-    double& restitution,
-    const std::vector<double>& speeds,
-    std::vector<double>& overlaps
-)
-{
-    overlaps.assign(speeds.size(), 0);
-    std::ostringstream what;
-    restitution = tfdem::kUnknownRestitution;
-    tfdem::DemInstance::LinearContact linear;
-    if
-    (
-        dem.linear_contact(a, b, linear)
-     && (linear.damping >= 0 || linear.restitution >= 0)
-    )
-    {
-        what << "linear, k_n = " << linear.stiffness << " N/m, "
-             << (linear.damping >= 0 ? "eta_n = " : "e_n = ")
-             << (linear.damping >= 0 ? linear.damping : linear.restitution)
-             << (linear.damping >= 0 ? " N s/m" : "") << ", m_eff = " << mEff << " kg";
-        model = what.str();
-        restitution = linear.damping >= 0
-          ? tfdem::contact::restitution_from_damping(linear.stiffness, linear.damping, mEff)
-          : linear.restitution;
-        for (std::size_t k = 0; k < speeds.size(); ++k)
-        {
-            overlaps[k] = tfdem::contact::linear_impact_overlap(linear.stiffness, mEff, speeds[k]);
-        }
-        return linear.damping >= 0
-          ? tfdem::contact::contact_time_from_damping(linear.stiffness, linear.damping, mEff)
-          : tfdem::contact::contact_time(linear.stiffness, linear.restitution, mEff);
-    }
-    tfdem::DemInstance::HertzContact hertz;
-    if (dem.hertz_contact(a, b, hertz))
-    {
-        const double modulus = tfdem::contact::effective_modulus
-        (
-            hertz.young_a, hertz.poisson_a, hertz.young_b, hertz.poisson_b
-        );
-        what << "Hertz, E* = " << modulus << " Pa, R* = " << rEff << " m, m_eff = " << mEff
-             << " kg, elastic at impact speed " << impactSpeed << " m/s";
-        model = what.str();
-        for (std::size_t k = 0; k < speeds.size(); ++k)
-        {
-            overlaps[k] = tfdem::contact::hertz_impact_overlap(modulus, rEff, mEff, speeds[k]);
-        }
-        return tfdem::contact::hertz_contact_time(modulus, rEff, mEff, impactSpeed);
-    }
-    return -1;
-}
-
-void contactTimeSteps
-(
-    const fileName& script,
-    const tfdem::DemInstance& dem,
-    double impactSpeed,
-    double fall
-)
-{
-    if (!dem.integrates())
-    {
-        Info<< "TFDEM coupling: the DEM script integrates no particle motion (no fix nve*):"
-            << " a frozen bed, contact time not checked" << endl;
-        return;
-    }
-    const std::vector<double> lightest = smallestOfType(dem, dem.masses());
-    const std::vector<double> smallest = smallestOfType(dem, dem.radii());
-    const double dt = dem.time_step();
-    bool checked = false;
-    for (int a = 1; a <= dem.type_count(); ++a)
-    {
-        for (int b = a; b <= dem.type_count(); ++b)
-        {
-            const double mEff = reduced(lightest[a - 1], lightest[b - 1]);
-            if (std::isinf(mEff))
-            {
-                continue;
-            }
-            std::string model;
-            double restitution;
-            std::vector<double> overlap;
-            const double rEff = reduced(smallest[a - 1], smallest[b - 1]);
-            const double tc = contactTime
-            (
-                dem, a, b, mEff, rEff, impactSpeed, model, restitution, {impactSpeed, fall},
-                overlap
-            );
-            if (tc < 0)
-            {
-                continue;
-            }
-            checked = true;
-            const double d = 2*std::min(smallest[a - 1], smallest[b - 1]);
-            Info<< "TFDEM coupling: contact of atom types " << a << " and " << b << " ("
-                << model.c_str() << "): t_c = " << tc << " s (lightest particles), " << tc/dt
-                << " DEM steps per contact; deepest overlap " << 100*overlap[1]/d << " % of d at"
-                << " a free fall's impact (" << fall << " m/s), " << 100*overlap[0]/d << " % at "
-                << impactSpeed << " m/s" << endl;
-            if (overlap[1] > largestSoundImpactOverlap*d)
-            {
-                Info<< "TFDEM warning: contact of atom types " << a << " and " << b << ": a"
-                    << " particle falling " << fall << " m/s onto another sinks "
-                    << 100*overlap[1]/d << " % of its diameter into it (more than "
-                    << 100*largestSoundImpactOverlap << " %): the contacts are too soft for"
-                    << " the bed; stiffen k_n (or E)" << endl;
-            }
-            const std::string problem = tfdem::dem_step_problem(tc, dt, restitution);
-            if (!problem.empty())
-            {
-                FatalErrorInFunction
-                    << script << ": contact of atom types " << a << " and " << b
-                    << " (" << model.c_str() << "): " << problem.c_str() << exit(FatalError);
-            }
-            const std::string advice = tfdem::dem_step_advice(tc, dt, restitution);
-            if (!advice.empty())
-            {
-                Info<< "TFDEM coupling: advice: contact of atom types " << a << " and " << b
-                    << ": " << advice.c_str() << endl;
-            }
-        }
-    }
-    if (!checked)
-    {
-        Info<< "TFDEM coupling: the DEM script gives neither a linear contact (k_n with"
-            << " gamman_abs or coefficientRestitution) nor a Hertz one (youngsModulus):"
-            << " contact time not checked" << endl;
-    }
-}
-
-} // End anonymous namespace
-
-
-void Foam::tfdemChecks::scene
-(
-    const tfdem::CouplingConfig& config,
-    const tfdem::CartesianGrid& grid,
-    const tfdem::DemInstance& dem,
-    const volVectorField& U,
-    const vector& g
-)
-{
-    tfdem::DemInstance::LinearContact contact;
-    const scalar inflow = largestInflowSpeed(U);
-    if
-    (
-        !dem.linear_contact(1, 1, contact) || contact.damping < 0 || inflow <= 0
-     || config.particle_diameters.empty()
-    )
-    {
-        Info<< "TFDEM scene: not checked (it needs a linear contact with absolute damping"
-            << " and an inflow)" << endl;
-        return;
-    }
-    tfdem::Scene s;
-    s.particle_diameter = config.particle_diameters.front();  // smallest: shortest contact
-    s.particle_density = config.particle_density;
-    s.gas = config.gas;
-    s.gravity = mag(g);
-    s.gas_velocity = inflow;
-    s.cell_size = std::min(grid.spacing[0], grid.spacing[1]);
-    s.normal_stiffness = contact.stiffness;
-    s.normal_damping = contact.damping;
-    s.dem_time_step = dem.time_step();
-    s.coupling_interval = tfdemChecks::couplingInterval(config, U.mesh().time().deltaTValue(), dem.time_step());
-    s.drag_law = config.transfer.law;
-    try
-    {
-        std::istringstream report(tfdem::format_report(tfdem::check_scene(s)));
-        for (std::string line; std::getline(report, line);)
-        {
-            Info<< "TFDEM scene: " << line.c_str() << endl;
-        }
-    }
-    catch (const std::exception& e)
-    {
-        Info<< "TFDEM scene: not checked (" << e.what() << ")" << endl;
-    }
-}
-
-
-void Foam::tfdemChecks::timeSteps
-(
-    const Time& runTime,
-    const tfdem::CouplingConfig& config,
-    const tfdem::DemInstance& dem,
-    const volVectorField& U,
-    const vector& g
-)
-{
-    contactTimeSteps
-    (
-        runTime.globalPath()/config.dem_script, dem, largestImpactSpeed(U, g), fallSpeed(U, g)
-    );
-    if (runTime.controlDict().lookupOrDefault<Switch>("adjustTimeStep", false))
-    {
-        FatalErrorInFunction
-            << "system/controlDict: adjustTimeStep must be 'no' for a coupled"
-            << " case: the gas step is coupling_interval DEM steps"
-            << exit(FatalError);
-    }
-    // Given or derived, the gas step must be that many DEM steps
-    const double deltaT = runTime.deltaTValue(), dt = dem.time_step();
-    const long interval = couplingInterval(config, deltaT, dt);
-    if (interval >= 1 && relativeDifference(deltaT, interval*dt) <= 1e-9)
-    {
-        return;
-    }
-    if (config.coupling_interval == 0)
-    {
-        const long below = std::max(1L, static_cast<long>(std::floor(deltaT/dt)));
-        FatalErrorInFunction
-            << "system/controlDict: deltaT = " << deltaT << " s is not a whole number of DEM"
-            << " steps of " << dt << " s (the DEM script's timestep; " << deltaT/dt
-            << " of them): use deltaT = " << below << " x " << dt << " = " << below*dt
-            << " s, or a DEM timestep of deltaT / " << below << " = " << deltaT/below << " s"
-            << exit(FatalError);
-    }
-    FatalErrorInFunction
-        << "system/controlDict: deltaT = " << deltaT
-        << " s must equal dem.coupling_interval x DEM timestep = "
-        << config.coupling_interval << " x " << dt << " = " << interval*dt << " s ("
-        << config.file.c_str() << "); the coupling interval must divide the gas step evenly"
-        << exit(FatalError);
-}
-
-
-long Foam::tfdemChecks::couplingInterval
-(
-    const tfdem::CouplingConfig& config,
-    double gasStep,
-    double demStep
-)
-{
-    return config.coupling_interval > 0 ? config.coupling_interval : std::llround(gasStep/demStep);
 }

@@ -5,7 +5,7 @@ TFDEM_ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 export TFDEM_ROOT
 export TFDEM_BUILD="${TFDEM_BUILD:-$TFDEM_ROOT/build}"
 export WM_PROJECT_DIR=/usr/share/openfoam
-export PATH="$TFDEM_ROOT/scripts/bin:$TFDEM_BUILD/openfoam_solver:$TFDEM_BUILD/liggghts_fixes:$TFDEM_BUILD/coupling:$PATH"
+export PATH="$TFDEM_ROOT/scripts/bin:$TFDEM_BUILD/openfoam_solver:$TFDEM_BUILD/engines:$TFDEM_BUILD/engines/liggghts:$TFDEM_BUILD/coupling:$PATH"
 # Python scripts use Debian's python3 (matplotlib, numpy, yaml from apt) and the tfdem
 # package in python/.
 export TFDEM_PYTHON=/usr/bin/python3

@@ -1,5 +1,5 @@
 """The two particle engines side by side on seed 000's beds (issue 25): each of the study's
-independent realizations of the uniform-inflow and the jet bed (tutorials/seed000_study,
+independent realizations of the uniform-inflow and the jet bed (studies/seed000,
 runs/<bed>_m1_r<k>: LIGGGHTS' soft spheres from a poured packing) run again with the
 hard-sphere engine from the same packing, the same gas, mesh and coupling, its collision laws
 the LIGGGHTS contacts' equivalents (tfdem.engines.hard_sphere_laws: e_n from k_n and eta_n,
@@ -22,7 +22,7 @@ import sys
 
 import yaml
 
-from tfdem import TUTORIALS
+from tfdem import STUDIES
 from tfdem.accuracy import scalar_metrics
 from tfdem.batch import CaseRun, run_batch
 from tfdem.bed import BedOutputs, l1_difference
@@ -32,7 +32,7 @@ from tfdem.run import run
 from tfdem.stats import ensemble
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-STUDY = os.path.join(TUTORIALS, "seed000_study")
+STUDY = os.path.join(STUDIES, "seed000")
 BEDS = ("uniform", "jet")
 REALIZATIONS = (1, 2, 3, 4)
 METRICS = ("dp20_mean", "dp20_std", "mean_height", "dp20_frequency", "bulk_coordination", "multicontact")
@@ -53,7 +53,7 @@ def soft_sphere_run(bed, k):
     run_ = CaseRun(f"{bed}_m1_r{k}", os.path.join(STUDY, "runs", f"{bed}_m1_r{k}"))
     if not run_.done():
         raise EngineError(f"{run_.case.path}: the study's realization has not finished: "
-                          f"run `tutorials/seed000_study/study.py run --runs {run_.name}` first")
+                          f"run `studies/seed000/study.py run --runs {run_.name}` first")
     return run_
 
 

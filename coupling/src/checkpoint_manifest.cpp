@@ -1,5 +1,7 @@
 #include "tfdem/checkpoint_manifest.h"
 
+#include "tfdem/engine_registry.h"
+
 #include <sys/stat.h>
 
 #include <algorithm>
@@ -180,8 +182,11 @@ std::vector<std::string> manifest_problems(const CheckpointManifest &m, double f
   if (!(m.removed_mass >= 0)) refuse("removedMass", text(m.removed_mass), "a mass cannot be negative");
   if (m.removed_particles == 0 && m.removed_mass != 0)
     refuse("removedMass", text(m.removed_mass), "no particles removed weigh nothing");
-  if (!m.engine.empty() && m.engine != "liggghts" && m.engine != "hard_sphere")
-    refuse("engine", m.engine, "the engines are liggghts and hard_sphere");
+  if (!m.engine.empty() && !find_engine(m.engine)) {
+    std::string names;
+    for (const std::string &name : engine_names()) names += (names.empty() ? "" : " and ") + name;
+    refuse("engine", m.engine, "the engines are " + names);
+  }
   if (!m.legacy()) {
     bool listed = false;
     for (const auto &f : m.files) listed = listed || f.path == restart_path;

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <type_traits>
 
+#include "tfdem/engine_registry.h"
 #include "tfdem/suggest.h"
 
 namespace tfdem {
@@ -39,6 +40,28 @@ std::string format_number(T v) {
   s << v;
   return s.str();
 }
+
+// A value as the effective configuration writes it (10 digits: the solver's own precision)
+std::string value_text(double v) {
+  std::ostringstream s;
+  s.precision(10);
+  s << v;
+  return s.str();
+}
+
+std::string list_text(const std::vector<double> &values) {
+  std::string out = "[";
+  for (std::size_t k = 0; k < values.size(); ++k) out += (k ? ", " : "") + value_text(values[k]);
+  return out + "]";
+}
+
+std::string list_text(const std::vector<std::string> &values) {
+  std::string out = "[";
+  for (std::size_t k = 0; k < values.size(); ++k) out += (k ? ", " : "") + values[k];
+  return out + "]";
+}
+
+std::string range_text(double min, double max) { return "[" + format_number(min) + ", " + format_number(max) + "]"; }
 
 // Lines where a quote opens and does not close: YAML would take the lines after it into the
 // value (a file name swallowing the rest of the file). No TFDEM value spans lines. A single
@@ -103,6 +126,23 @@ ConfigSection::ConfigSection(const std::string &file, std::unique_ptr<YAML::Node
                              std::vector<std::string> &problems)
     : file_(file), node_(std::move(node)), path_(std::move(path)), problems_(&problems) {}
 
+ConfigSection ConfigSection::schema(std::vector<std::string> &problems) {
+  ConfigSection root("(schema)", "", problems);
+  root.schema_ = true;
+  return root;
+}
+
+void ConfigSection::record(const Key &key, const std::string &kind, const std::string &fallback,
+                           const std::string &range, const std::string &value) {
+  records_->push_back({key_path(key.name), kind, key.unit, key.doc, fallback, range, condition_, value, has(key.name)});
+}
+
+void ConfigSection::declare(const Key &key, const std::string &kind, const std::string &fallback,
+                            const std::string &range, const std::string &value) {
+  known_keys_.push_back(key.name);
+  record(key, kind, fallback, range, value);
+}
+
 ConfigSection::~ConfigSection() = default;
 ConfigSection::ConfigSection(ConfigSection &&) noexcept = default;
 
@@ -118,6 +158,11 @@ void ConfigSection::problem(const std::string &key, const std::string &message) 
   problems_->push_back(where(key) + ": " + key_path(key) + ": " + message);
 }
 
+std::string ConfigSection::raw(const std::string &key) const {
+  const YAML::Node &map = *node_;
+  return has(key) && map[key].IsScalar() ? map[key].Scalar() : std::string();
+}
+
 bool ConfigSection::has(const std::string &key) const {
   const YAML::Node &map = *node_;
   return map.IsMap() && map[key];
@@ -126,81 +171,107 @@ bool ConfigSection::has(const std::string &key) const {
 std::optional<YAML::Node> ConfigSection::child(const std::string &key, bool required) {
   known_keys_.push_back(key);
   if (!has(key)) {
-    if (required) problems_->push_back(location(file_, node_->Mark()) + ": " + key_path(key) + ": missing (required)");
+    if (required && !schema_)
+      problems_->push_back(location(file_, node_->Mark()) + ": " + key_path(key) + ": missing (required)");
     return std::nullopt;
   }
   const YAML::Node &map = *node_;
   return map[key];
 }
 
-ConfigSection ConfigSection::section(const std::string &key, bool required) {
-  const std::optional<YAML::Node> value = child(key, required);
+ConfigSection ConfigSection::section(const Key &key, bool required) {
+  const std::optional<YAML::Node> value = child(key.name, required);
+  record(key, "a section", required ? "required" : "", "", "");
   auto node = std::make_unique<YAML::Node>(YAML::NodeType::Map);
   if (value) {
     if (value->IsMap())
       node->reset(*value);
     else
-      problem(key, "must be a mapping of keys to values");
+      problem(key.name, "must be a mapping of keys to values");
   }
-  return ConfigSection(file_, std::move(node), key_path(key), *problems_);
+  ConfigSection sub(file_, std::move(node), key_path(key.name), *problems_);
+  sub.records_ = records_;
+  sub.condition_ = condition_;
+  sub.schema_ = schema_;
+  return sub;
 }
 
 template <typename T>
-T ConfigSection::scalar(const std::string &key, T fallback, T min, T max, bool required, const char *kind) {
+T ConfigSection::scalar(const Key &k, T fallback, T min, T max, bool required, const char *kind) {
+  const std::string &key = k.name;
   const std::optional<YAML::Node> value = child(key, required);
-  if (!value) return fallback;
+  const auto done = [&](T v) {
+    record(k, kind, required ? "required" : value_text(static_cast<double>(fallback)), range_text(min, max),
+           value_text(static_cast<double>(v)));
+    return v;
+  };
+  if (!value) return done(fallback);
   T v;
   try {
     v = value->as<T>();
   } catch (const YAML::Exception &) {
     problem(key, std::string("must be ") + kind + ", got '" +
                      (value->IsScalar() ? value->Scalar() : std::string("a collection")) + "'");
-    return fallback;
+    return done(fallback);
   }
   if (not_a_number(v)) {
     problem(key, "must be a number, got '" + value->Scalar() + "' (not a number)");
-    return fallback;
+    return done(fallback);
   }
   if (!(v >= min && v <= max)) {
     problem(key, "value " + format_number(v) + " is out of range [" + format_number(min) + ", " + format_number(max) + "]");
-    return fallback;
+    return done(fallback);
   }
-  return v;
+  return done(v);
 }
 
-double ConfigSection::number(const std::string &key, double fallback, double min, double max, bool required) {
+double ConfigSection::number(const Key &key, double fallback, double min, double max, bool required) {
   return scalar<double>(key, fallback, min, max, required, "a number");
 }
 
-long ConfigSection::integer(const std::string &key, long fallback, long min, long max, bool required) {
+long ConfigSection::integer(const Key &key, long fallback, long min, long max, bool required) {
   return scalar<long>(key, fallback, min, max, required, "a whole number");
 }
 
-bool ConfigSection::boolean(const std::string &key, bool fallback) {
+bool ConfigSection::boolean(const Key &k, bool fallback) {
+  const std::string &key = k.name;
   const std::optional<YAML::Node> value = child(key, false);
-  if (!value) return fallback;
-  try {
-    return value->as<bool>();
-  } catch (const YAML::Exception &) {
-    problem(key, "must be true or false, got '" + (value->IsScalar() ? value->Scalar() : std::string("a collection")) + "'");
-    return fallback;
+  bool v = fallback;
+  if (value) {
+    try {
+      v = value->as<bool>();
+    } catch (const YAML::Exception &) {
+      problem(key, "must be true or false, got '" + (value->IsScalar() ? value->Scalar() : std::string("a collection")) +
+                       "'");
+    }
   }
+  record(k, "true or false", fallback ? "true" : "false", "", v ? "true" : "false");
+  return v;
 }
 
-std::string ConfigSection::text(const std::string &key, const std::string &fallback, bool required) {
+std::string ConfigSection::text(const Key &k, const std::string &fallback, bool required) {
+  const std::string &key = k.name;
   const std::optional<YAML::Node> value = child(key, required);
-  if (!value) return fallback;
-  if (!value->IsScalar()) {
-    problem(key, "must be a single value");
-    return fallback;
+  std::string v = fallback;
+  if (value) {
+    if (value->IsScalar())
+      v = value->Scalar();
+    else
+      problem(key, "must be a single value");
   }
-  return value->Scalar();
+  record(k, "a name", required ? "required" : fallback, "", v);
+  return v;
 }
 
-std::vector<double> ConfigSection::number_list(const std::string &key, double min, double max, bool required) {
+std::vector<double> ConfigSection::number_list(const Key &k, double min, double max, bool required) {
+  const std::string &key = k.name;
   const std::optional<YAML::Node> value = child(key, required);
-  if (!value) return {};
   std::vector<double> out;
+  const auto done = [&]() {
+    record(k, "a number or a list of numbers", required ? "required" : "[]", range_text(min, max), list_text(out));
+    return out;
+  };
+  if (!value) return done();
   const auto add = [&](const YAML::Node &item) {
     double v;
     try {
@@ -224,13 +295,19 @@ std::vector<double> ConfigSection::number_list(const std::string &key, double mi
   else
     add(*value);
   if (value->IsSequence() && value->size() == 0) problem(key, "is an empty list: give at least one value");
-  return out;
+  return done();
 }
 
-std::vector<double> ConfigSection::number_table(const std::string &key, std::vector<double> fallback, double min,
+std::vector<double> ConfigSection::number_table(const Key &k, std::vector<double> fallback, double min,
                                                 double max, bool required) {
+  const std::string &key = k.name;
   const std::optional<YAML::Node> value = child(key, required);
-  if (!value) return fallback;
+  const auto done = [&](const std::vector<double> &v) {
+    record(k, "a number, a list, or a list of lists (a matrix, row by row)",
+           required ? "required" : fallback.empty() ? "" : list_text(fallback), range_text(min, max), list_text(v));
+    return v;
+  };
+  if (!value) return done(fallback);
   std::vector<double> out;
   bool ok = true;
   const auto add = [&](const YAML::Node &item) {
@@ -261,27 +338,42 @@ std::vector<double> ConfigSection::number_table(const std::string &key, std::vec
     ok = false;
   }
   if (!ok) problem(key, "must be a number, a list of numbers or a list of lists (a matrix, row by row)");
-  return ok && !out.empty() ? out : fallback;
+  return done(ok && !out.empty() ? out : fallback);
 }
 
-std::vector<std::string> ConfigSection::text_list(const std::string &key) {
+std::vector<std::string> ConfigSection::text_list(const Key &k) {
+  const std::string &key = k.name;
   const std::optional<YAML::Node> value = child(key, false);
-  if (!value) return {};
-  if (value->IsScalar()) return {value->Scalar()};
   std::vector<std::string> out;
-  if (value->IsSequence())
-    for (const auto &item : *value)
-      if (item.IsScalar()) out.push_back(item.Scalar());
-  if (!value->IsSequence() || out.size() != value->size()) problem(key, "must be a name or a list of names");
+  if (value && value->IsScalar()) {
+    out.push_back(value->Scalar());
+  } else if (value) {
+    if (value->IsSequence())
+      for (const auto &item : *value)
+        if (item.IsScalar()) out.push_back(item.Scalar());
+    if (!value->IsSequence() || out.size() != value->size()) problem(key, "must be a name or a list of names");
+  }
+  record(k, "a name or a list of names", "[]", "", list_text(out));
   return out;
 }
 
-std::string ConfigSection::choice(const std::string &key, const std::string &fallback,
-                                  const std::vector<std::string> &choices) {
-  const std::string v = text(key, fallback);
-  if (std::find(choices.begin(), choices.end(), v) != choices.end()) return v;
-  problem(key, "unknown value '" + v + "'" + did_you_mean(v, choices) + "; valid: " + quoted_list(choices));
-  return fallback;
+std::string ConfigSection::choice(const Key &k, const std::string &fallback, const std::vector<std::string> &choices) {
+  const std::string &key = k.name;
+  const std::optional<YAML::Node> value = child(key, false);
+  std::string v = fallback;
+  if (value && !value->IsScalar()) {
+    problem(key, "must be a single value");
+  } else if (value) {
+    v = value->Scalar();
+    if (std::find(choices.begin(), choices.end(), v) == choices.end()) {
+      problem(key, "unknown value '" + v + "'" + did_you_mean(v, choices) + "; valid: " + quoted_list(choices));
+      v = fallback;
+    }
+  }
+  std::string options;
+  for (const auto &c : choices) options += (options.empty() ? "" : ", ") + c;
+  record(k, "one of", fallback, options, v);
+  return v;
 }
 
 void ConfigSection::reject_unknown_keys() {
@@ -302,17 +394,19 @@ void ConfigSection::reject_unknown_keys() {
 
 drag::Gas read_gas(ConfigSection &section) {
   drag::Gas gas;
-  gas.density = section.number("density", 1.2, 1e-6, 1e4);
-  gas.viscosity = section.number("viscosity", 1.8e-5, 1e-9, 1e3);
+  gas.density = section.number({"density", "kg/m^3", "the gas density rho_g (constant/transportProperties' rho: the same)"},
+                               1.2, 1e-6, 1e4);
+  gas.viscosity = section.number(
+      {"viscosity", "Pa s", "the gas dynamic viscosity mu_g (rho_g times transportProperties' nu: the same)"}, 1.8e-5,
+      1e-9, 1e3);
   section.reject_unknown_keys();
   return gas;
 }
 
 // A positive length in metres under `key` (0 when absent): a bare number, since a unit such as
 // '1 cm' or a multiple of the diameter would be read as something else.
-double read_length(ConfigSection &section, const std::string &key) {
-  if (!section.given(key)) return 0.0;
-  const std::string text = section.text(key, "");
+double read_length(ConfigSection &section, const Key &key) {
+  const std::string text = section.raw(key.name);
   double value = 0.0;
   std::size_t used = 0;
   try {
@@ -320,30 +414,34 @@ double read_length(ConfigSection &section, const std::string &key) {
   } catch (const std::exception &) {
     used = 0;
   }
-  if (used == 0 || used != text.size() || !std::isfinite(value)) {
-    section.report(key, "must be a length in metres, a plain number (e.g. 0.01 for 1 cm), got '" + text + "'");
-    return 0.0;
+  const bool given = section.has(key.name);
+  if (given && (used == 0 || used != text.size() || !std::isfinite(value))) {
+    section.report(key.name, "must be a length in metres, a plain number (e.g. 0.01 for 1 cm), got '" + text + "'");
+    value = 0.0;
+  } else if (given && !(value > 0.0)) {
+    section.report(key.name, "value " + text + " is not a bandwidth: give a length above 0 in metres (3-6 particle "
+                             "diameters), or leave the key out for no smoothing");
+    value = 0.0;
   }
-  if (!(value > 0.0)) {
-    section.report(key, "value " + text + " is not a bandwidth: give a length above 0 in metres (3-6 particle "
-                        "diameters), or leave the key out for no smoothing");
-    return 0.0;
-  }
-  return value;
+  section.declare(key, "a length", "none", "above 0", given ? value_text(value) : "");
+  return given ? value : 0.0;
 }
 
 // Three whole numbers >= 1 under `key` (gas cells per particle-field cell along x, y, z);
 // 1, 1, 1 when absent. Whether they divide the gas grid is the filter's check (the grid is the
 // mesh's).
-std::array<int, 3> read_block(ConfigSection &section, const std::string &key) {
+std::array<int, 3> read_block(ConfigSection &section, const Key &key) {
   std::array<int, 3> block{1, 1, 1};
-  if (!section.given(key)) return block;
+  if (!section.has(key.name)) {
+    section.declare(key, "three whole numbers", "[1, 1, 1]", "1 or more", "");
+    return block;
+  }
   const std::vector<double> values = section.number_list(key, 1, 1e6);
   bool whole = values.size() == 3;
   for (double v : values) whole = whole && v == std::floor(v);
   if (!whole) {
-    section.report(key, "must be three whole numbers of 1 or more, the gas cells per particle-field cell along x, "
-                        "y and z (e.g. [1, 2, 1]: the particle field on cells twice the gas cells' height)");
+    section.report(key.name, "must be three whole numbers of 1 or more, the gas cells per particle-field cell along x, "
+                             "y and z (e.g. [1, 2, 1]: the particle field on cells twice the gas cells' height)");
     return block;
   }
   for (int a = 0; a < 3; ++a) block[a] = static_cast<int>(values[a]);
@@ -352,111 +450,105 @@ std::array<int, 3> read_block(ConfigSection &section, const std::string &key) {
 
 VoidFractionOptions read_void_fraction(ConfigSection &section) {
   VoidFractionOptions o;
-  o.method = void_fraction_method_from_name(section.choice("method", "centroid", void_fraction_method_names()));
-  o.cube_factor = section.number("cube_factor", 1.0, minimum_cube_factor(), 10.0);
-  o.divided_points_per_diameter = static_cast<int>(section.integer("divided_points_per_diameter", 6, 2, 64));
-  o.two_dimensional = section.boolean("two_dimensional", false);
-  o.void_fraction_floor = section.number("floor", 0.0, 0.0, 1.0);
+  o.method = void_fraction_method_from_name(section.choice(
+      {"method", "", "how a particle's volume is shared among the gas cells: centroid (seed 000 eq. 34, all in its "
+                     "centre's cell), divided (over the cells its volume lies in), porous_cube (Link et al., seed 001 "
+                     "eqs. 34-39: a cube of cube_factor diameters)"},
+      "centroid", void_fraction_method_names()));
+  o.cube_factor = section.number(
+      {"cube_factor", "", "porous_cube: the cube's side in particle diameters (its smallest, the sphere's volume)"},
+      1.0, minimum_cube_factor(), 10.0);
+  o.divided_points_per_diameter = static_cast<int>(section.integer(
+      {"divided_points_per_diameter", "", "divided: sample points across a diameter to share its volume"}, 6, 2, 64));
+  o.two_dimensional = section.boolean(
+      {"two_dimensional", "", "seed 000's 2-D rule: one particle layer in cells one diameter deep, one size, no "
+                              "force across the depth"},
+      false);
+  o.void_fraction_floor = section.number(
+      {"floor", "", "the lowest gas fraction a cell's drag sees (0: none; a crowded cell stops the run instead)"},
+      0.0, 0.0, 1.0);
   if (o.void_fraction_floor >= 1.0) {
     section.report("floor", "value 1 leaves no room for particles: the floor must be below 1 (e.g. 0.3)");
     o.void_fraction_floor = 0.0;
   }
-  o.diffusion_bandwidth = read_length(section, "diffusion_bandwidth");
-  o.particle_field_block = read_block(section, "particle_field_block");
-  section.reject_unknown_keys();
-  return o;
-}
-
-const std::vector<std::string> &engine_names() {
-  static const std::vector<std::string> names = {"liggghts", "hard_sphere"};
-  return names;
-}
-
-HardSphereOptions read_hard_sphere(ConfigSection &section) {
-  HardSphereOptions o;
-  o.restitution = section.number_table("restitution", {}, 0, 1, true);
-  o.tangential_restitution = section.number_table("tangential_restitution", {}, 0, 1, true);
-  o.friction = section.number_table("friction", {}, 0, 1e3, true);
-  ConfigSection wall = section.section("wall");
-  const auto own = [](const std::vector<double> &particles) {
-    return particles.size() == 1 ? particles : std::vector<double>{};
-  };
-  o.wall_restitution = wall.number_table("restitution", own(o.restitution), 0, 1);
-  o.wall_tangential_restitution = wall.number_table("tangential_restitution", own(o.tangential_restitution), 0, 1);
-  o.wall_friction = wall.number_table("friction", own(o.friction), 0, 1e3);
-  for (auto [where, values] : {std::pair{&section, &o.restitution}, std::pair{&wall, &o.wall_restitution}})
-    if (std::any_of(values->begin(), values->end(), [](double e) { return e == 0; }))
-      where->report("restitution", "e_n = 0 leaves a pair that collided touching and at rest against each other, "
-                                   "which binary collisions cannot part (each later contact is a collision at zero "
-                                   "gap, without end): give e_n above 0 (glass on glass 0.9-0.97)");
-  for (const auto &[key, values] : {std::pair{"restitution", &o.wall_restitution},
-                                    std::pair{"tangential_restitution", &o.wall_tangential_restitution},
-                                    std::pair{"friction", &o.wall_friction}})
-    if (values->empty() && !wall.has(key))
-      wall.report(key, std::string("missing: the particles' ") + key + " is a matrix, so the walls' needs its " +
-                           "own value (one, or one per type)");
-  wall.reject_unknown_keys();
-  o.elastic_within = section.number("elastic_within", o.elastic_within, 0, 1);
-  o.max_collisions_per_particle = section.integer("max_collisions_per_particle", o.max_collisions_per_particle, 1,
-                                                  100000000);
-  o.contact_gap = section.number("contact_gap", o.contact_gap, 0, 1);
-  o.move = section.boolean("move", o.move);
+  o.diffusion_bandwidth = read_length(
+      section, {"diffusion_bandwidth", "m",
+                "the particle fields smoothed by diffusion to this bandwidth b (3-6 particle diameters; leave out for "
+                "none)"});
+  o.particle_field_block = read_block(
+      section, {"particle_field_block", "",
+                "gas cells per particle-field cell along x, y, z: the particle fields on coarser cells, interpolated "
+                "back"});
   section.reject_unknown_keys();
   return o;
 }
 
 OutputOptions read_output(ConfigSection &section) {
   OutputOptions o;
-  o.statistics_interval = section.number("statistics_interval", 0.0, 0.0, 1e6);
-  o.particles_vtk = section.boolean("particles_vtk", true);
+  o.statistics_interval = section.number(
+      {"statistics_interval", "s", "seconds between samples of the particle statistics and the force maps "
+                                   "(postProcessing/tfdemParticles); 0: none; a whole number of gas steps"},
+      0.0, 0.0, 1e6);
+  o.particles_vtk = section.boolean(
+      {"particles_vtk", "", "the particles as VTK files at every gas write time (VTK/particles_<time>.vtk)"}, true);
   section.reject_unknown_keys();
   return o;
 }
 
-CouplingConfig parse_coupling_config(const std::string &file, const std::string &text) {
-  std::vector<std::string> problems;
-  ConfigSection root(file, text, problems);
-  if (!problems.empty()) throw ConfigError(problems);  // unparsable: nothing else to check
-  CouplingConfig c;
-  c.file = file;
-  ConfigSection gas = root.section("gas", true);
-  c.gas = read_gas(gas);
-  ConfigSection particles = root.section("particles", true);
-  c.particle_diameters = particles.number_list("diameter", 1e-9, 1.0, true);
-  std::sort(c.particle_diameters.begin(), c.particle_diameters.end());
-  c.particle_density = particles.number("density", 0.0, 1e-3, 1e5, true);
-  particles.reject_unknown_keys();
-  ConfigSection dem = root.section("dem", true);
-  const std::string engine = dem.choice("engine", "liggghts", engine_names());
-  c.engine = engine == "hard_sphere" ? Engine::HardSphere : Engine::Liggghts;
-  // each engine's own keys; the other's are refused by name
-  const auto refuse = [&dem, &engine](const char *key, const char *whose) {
-    if (dem.has(key))
-      dem.refuse(key, std::string("applies to the ") + whose + " engine, not to dem.engine: " + engine +
-                          "; remove the key");
-  };
-  if (c.engine == Engine::Liggghts) {
-    c.dem_script = dem.text("script", "", true);
-    // optional: the solver derives it as deltaT / the DEM step (which must be whole); given, it is checked
-    c.coupling_interval = dem.given("coupling_interval") ? dem.integer("coupling_interval", 1, 1, 1000000) : 0;
-    refuse("particles", "hard_sphere");
-    refuse("hard_sphere", "hard_sphere");
-  } else {
-    c.dem_particles = dem.text("particles", "", true);
-    ConfigSection hard = dem.section("hard_sphere", true);
-    c.hard_sphere = read_hard_sphere(hard);
-    refuse("script", "liggghts");
-    refuse("coupling_interval", "liggghts (the hard-sphere engine's flow step is the gas step)");
+namespace {
+
+// The engines' keys of the dem section, each with the engine that takes it
+std::vector<std::pair<std::string, std::string>> engine_keys() {
+  std::vector<std::pair<std::string, std::string>> keys;
+  for (const std::string &name : engine_names()) {
+    std::vector<std::string> ignored;
+    ConfigSection probe = ConfigSection::schema(ignored);
+    find_engine(name)->read(probe);
+    for (const std::string &key : probe.known_keys()) keys.emplace_back(key, name);
   }
-  c.outlets = dem.text_list("outlets");
+  return keys;
+}
+
+// dem: the engine by name, its own keys read by its reader, the others' refused by name
+void read_dem(ConfigSection &dem, CouplingConfig &c) {
+  c.engine = dem.choice({"engine", "", "the particle engine (its keys below)"}, default_engine_name(), engine_names());
+  const EngineType *engine = find_engine(c.engine);
+  if (dem.is_schema()) {
+    for (const std::string &name : engine_names()) {
+      dem.set_condition("dem.engine: " + name);
+      find_engine(name)->read(dem);
+    }
+    dem.set_condition("");
+  } else if (engine) {
+    c.engine_settings = engine->read(dem);
+  }
+  for (const auto &[key, owner] : engine_keys())
+    if (owner != c.engine && dem.has(key) &&
+        std::find(dem.known_keys().begin(), dem.known_keys().end(), key) == dem.known_keys().end())
+      dem.refuse(key, "applies to the " + owner + " engine, not to dem.engine: " + c.engine + "; remove the key");
+  c.outlets = dem.text_list(
+      {"outlets", "", "gas patches through which particles leave the DEM (counted and removed; the DEM's box must "
+                      "reach beyond them)"});
   dem.reject_unknown_keys();
-  ConfigSection coupling = root.section("coupling");
-  c.transfer.method = transfer_method_from_name(coupling.choice("transfer", "averaged", transfer_method_names()));
-  c.transfer.law = drag::law_from_name(coupling.choice("drag_law", "ergun_wen_yu", drag::law_names()));
-  const std::string gas_velocity = coupling.choice("gas_velocity_at_particle", "cell", gas_at_particle_names());
+}
+
+void read_coupling(ConfigSection &coupling, CouplingConfig &c) {
+  c.transfer.method = transfer_method_from_name(coupling.choice(
+      {"transfer", "", "how drag passes between particles and gas: averaged (seed 000 eqs. 33-35, a cell's mean), "
+                       "per_particle (eq. 29), per_particle_conservative (the gas gets minus the particles' sum)"},
+      "averaged", transfer_method_names()));
+  c.transfer.law = drag::law_from_name(
+      coupling.choice({"drag_law", "", "the drag closure (seed 000 eqs. 29-31; seed 001 eqs. 3-6)"}, "ergun_wen_yu",
+                      drag::law_names()));
+  const std::string gas_velocity = coupling.choice(
+      {"gas_velocity_at_particle", "", "the gas velocity a particle's drag sees: its cell's, or interpolated to its "
+                                       "centre (the per-particle transfers)"},
+      "cell", gas_at_particle_names());
   c.transfer.gas_velocity = gas_velocity == "interpolated" ? GasAtParticle::Interpolated : GasAtParticle::Cell;
-  c.transfer.polydispersity =
-      drag::polydispersity_from_name(coupling.choice("polydisperse_drag", "own_diameter", drag::polydispersity_names()));
+  c.transfer.polydispersity = drag::polydispersity_from_name(coupling.choice(
+      {"polydisperse_drag", "", "a mixture's drag: each particle at its own diameter, or Beetstra et al.'s (2007) "
+                                "correction at the local Sauter mean"},
+      "own_diameter", drag::polydispersity_names()));
   if (c.transfer.polydispersity != drag::Polydispersity::OwnDiameter && c.transfer.method == TransferMethod::Averaged)
     coupling.report("polydisperse_drag", "'" + drag::polydispersity_names()[static_cast<int>(c.transfer.polydispersity)] +
                                              "' gives each particle its own drag, which 'averaged' (eq. 33, one drag per "
@@ -466,15 +558,15 @@ CouplingConfig parse_coupling_config(const std::string &file, const std::string 
                                                 "uses the cell's mean gas velocity (eq. 33): remove the key or use "
                                                 "transfer: per_particle");
   c.transfer.gas = c.gas;
-  c.pressure_gradient_force = coupling.boolean("pressure_gradient_force", true);
-  if (coupling.has("viscous_force")) {
-    coupling.boolean("viscous_force", false);
-    coupling.report("viscous_force", "not modelled: the viscous-stress force V_p div(tau) of seed 000 eq. 28 is "
+  c.pressure_gradient_force = coupling.boolean(
+      {"pressure_gradient_force", "", "the force -V_p grad p on each particle (seed 000 eq. 28)"}, true);
+  if (coupling.has("viscous_force"))
+    coupling.refuse("viscous_force", "not modelled: the viscous-stress force V_p div(tau) of seed 000 eq. 28 is "
                                      "neglected, as the paper does (it is small beside drag in gas-fluidized beds); "
                                      "remove the key");
-  }
-  c.void_fraction_time_derivative = coupling.boolean("void_fraction_time_derivative", true);
-  ConfigSection void_fraction = coupling.section("void_fraction");
+  c.void_fraction_time_derivative = coupling.boolean(
+      {"void_fraction_time_derivative", "", "d(eps)/dt in the gas continuity equation (seed 001 eq. 7)"}, true);
+  ConfigSection void_fraction = coupling.section({"void_fraction", "", "the particles' volume in the gas cells"});
   c.void_fraction = read_void_fraction(void_fraction);
   if (c.void_fraction.filters() && c.transfer.method == TransferMethod::Averaged)
     void_fraction.report(c.void_fraction.diffusion_bandwidth > 0.0 ? "diffusion_bandwidth" : "particle_field_block",
@@ -482,10 +574,40 @@ CouplingConfig parse_coupling_config(const std::string &file, const std::string 
                          "cell's drag among the particles in that cell, and a filtered cell holds solids of "
                          "particles in other cells; use transfer: per_particle_conservative (or per_particle)");
   coupling.reject_unknown_keys();
-  ConfigSection output = root.section("output");
+}
+
+// The whole document: every module's keys, read by its reader
+CouplingConfig read_document(ConfigSection &root, const std::string &file) {
+  CouplingConfig c;
+  c.file = file;
+  ConfigSection gas = root.section({"gas", "", "the gas (SI units)"}, true);
+  c.gas = read_gas(gas);
+  ConfigSection particles = root.section({"particles", "", "the particles the DEM holds"}, true);
+  c.particle_diameters = particles.number_list(
+      {"diameter", "m", "each particle size d_p, one number or a list (every DEM particle has one of them)"}, 1e-9,
+      1.0, true);
+  std::sort(c.particle_diameters.begin(), c.particle_diameters.end());
+  c.particle_density = particles.number({"density", "kg/m^3", "the particle density rho_p"}, 0.0, 1e-3, 1e5, true);
+  particles.reject_unknown_keys();
+  ConfigSection dem = root.section({"dem", "", "the particle engine and its settings"}, true);
+  read_dem(dem, c);
+  ConfigSection coupling = root.section({"coupling", "", "drag, its transfer and the void fraction"});
+  read_coupling(coupling, c);
+  ConfigSection output = root.section({"output", "", "what the coupler writes besides the gas fields"});
   c.output = read_output(output);
   root.reject_unknown_keys();
+  return c;
+}
+
+}  // namespace
+
+CouplingConfig parse_coupling_config(const std::string &file, const std::string &text) {
+  std::vector<std::string> problems;
+  ConfigSection root(file, text, problems);
+  if (!problems.empty()) throw ConfigError(problems);  // unparsable: nothing else to check
+  CouplingConfig c = read_document(root, file);
   if (!problems.empty()) throw ConfigError(problems);
+  c.keys = root.records();
   return c;
 }
 
@@ -497,65 +619,25 @@ CouplingConfig load_coupling_config(const std::string &file) {
   return parse_coupling_config(file, text.str());
 }
 
+std::vector<KeyRecord> coupling_reference() {
+  std::vector<std::string> problems;
+  ConfigSection root = ConfigSection::schema(problems);
+  read_document(root, "(schema)");
+  return root.records();
+}
+
 std::string describe(const CouplingConfig &c) {
   std::ostringstream s;
-  s.precision(10);
-  s << "# effective coupling configuration (" << c.file << ")\n"
-    << "gas:\n  density: " << c.gas.density << "\n  viscosity: " << c.gas.viscosity << "\n"
-    << "particles:\n  diameter: [" << [&c] {
-         std::ostringstream list;
-         list.precision(10);
-         for (std::size_t k = 0; k < c.particle_diameters.size(); ++k) list << (k ? ", " : "") << c.particle_diameters[k];
-         return list.str();
-       }() << "]\n  density: " << c.particle_density << "\n"
-    << "dem:\n  engine: " << engine_names()[static_cast<int>(c.engine)] << "\n" << [&c] {
-         std::ostringstream dem;
-         dem.precision(10);
-         if (c.engine == Engine::Liggghts) {
-           dem << "  script: " << c.dem_script << "\n";
-           if (c.coupling_interval > 0) dem << "  coupling_interval: " << c.coupling_interval << "\n";
-           return dem.str();
-         }
-         const auto list = [](const std::vector<double> &v) {
-           std::ostringstream out;
-           out.precision(10);
-           out << "[";
-           for (std::size_t k = 0; k < v.size(); ++k) out << (k ? ", " : "") << v[k];
-           return out.str() + "]";
-         };
-         const HardSphereOptions &h = c.hard_sphere;
-         dem << "  particles: " << c.dem_particles << "\n  hard_sphere:\n    restitution: " << list(h.restitution)
-             << "\n    tangential_restitution: " << list(h.tangential_restitution) << "\n    friction: "
-             << list(h.friction) << "\n    wall:\n      restitution: " << list(h.wall_restitution)
-             << "\n      tangential_restitution: " << list(h.wall_tangential_restitution) << "\n      friction: "
-             << list(h.wall_friction) << "\n    elastic_within: " << h.elastic_within
-             << "\n    max_collisions_per_particle: " << h.max_collisions_per_particle
-             << "\n    contact_gap: " << h.contact_gap << "\n    move: " << (h.move ? "true" : "false") << "\n";
-         return dem.str();
-       }()
-    << "  outlets: [" << [&c] {
-         std::string list;
-         for (const auto &o : c.outlets) list += (list.empty() ? "" : ", ") + o;
-         return list;
-       }() << "]\n"
-    << "coupling:\n  transfer: " << transfer_method_names()[static_cast<int>(c.transfer.method)] << "\n"
-    << "  drag_law: " << drag::law_name(c.transfer.law) << "\n"
-    << "  gas_velocity_at_particle: " << gas_at_particle_names()[static_cast<int>(c.transfer.gas_velocity)] << "\n"
-    << "  polydisperse_drag: " << drag::polydispersity_names()[static_cast<int>(c.transfer.polydispersity)] << "\n"
-    << "  pressure_gradient_force: " << (c.pressure_gradient_force ? "true" : "false") << "\n"
-    << "  void_fraction_time_derivative: " << (c.void_fraction_time_derivative ? "true" : "false") << "\n"
-    << "  void_fraction:\n    method: " << void_fraction_method_names()[static_cast<int>(c.void_fraction.method)] << "\n"
-    << "    cube_factor: " << c.void_fraction.cube_factor << "\n"
-    << "    divided_points_per_diameter: " << c.void_fraction.divided_points_per_diameter << "\n"
-    << "    two_dimensional: " << (c.void_fraction.two_dimensional ? "true" : "false") << "\n"
-    << "    floor: " << c.void_fraction.void_fraction_floor << "\n";
-  if (c.void_fraction.diffusion_bandwidth > 0.0)
-    s << "    diffusion_bandwidth: " << c.void_fraction.diffusion_bandwidth << "\n";
-  if (c.void_fraction.particle_field_block != std::array<int, 3>{1, 1, 1})
-    s << "    particle_field_block: [" << c.void_fraction.particle_field_block[0] << ", "
-      << c.void_fraction.particle_field_block[1] << ", " << c.void_fraction.particle_field_block[2] << "]\n";
-  s << "output:\n  statistics_interval: " << c.output.statistics_interval << "\n"
-    << "  particles_vtk: " << (c.output.particles_vtk ? "true" : "false") << "\n";
+  s << "# effective coupling configuration (" << c.file << ")\n";
+  for (const KeyRecord &k : c.keys) {
+    const std::size_t depth = static_cast<std::size_t>(std::count(k.path.begin(), k.path.end(), '.'));
+    const std::string name = k.path.substr(k.path.rfind('.') == std::string::npos ? 0 : k.path.rfind('.') + 1);
+    if (k.kind == "a section") {
+      s << std::string(2 * depth, ' ') << name << ":\n";
+    } else if (!k.value.empty()) {
+      s << std::string(2 * depth, ' ') << name << ": " << k.value << "\n";
+    }
+  }
   return s.str();
 }
 

@@ -21,7 +21,8 @@ def environment():
     env["WM_PROJECT_DIR"] = "/usr/share/openfoam"
     env["PATH"] = os.pathsep.join([os.path.join(SOURCE_DIR, "scripts", "bin"),
                                    os.path.join(BUILD_DIR, "openfoam_solver"),
-                                   os.path.join(BUILD_DIR, "liggghts_fixes"),
+                                   os.path.join(BUILD_DIR, "engines"),
+                                   os.path.join(BUILD_DIR, "engines", "liggghts"),
                                    os.path.join(BUILD_DIR, "coupling"), env.get("PATH", "")])
     env["PYTHONPATH"] = os.pathsep.join(p for p in (os.path.join(SOURCE_DIR, "python"),
                                                     env.get("PYTHONPATH", "")) if p)
@@ -64,7 +65,8 @@ def run(args, cwd, log_name, ranks=1, expect_success=True, gas=DEFAULT_GAS_LAYOU
     log = os.path.join(cwd, log_name)
     # errors="replace": LIGGGHTS 3.8.0, aborting on 2 ranks, sometimes echoes an error line
     # from a freed buffer (bytes that are not UTF-8) on the second rank.
-    proc = subprocess.Popen(full, cwd=cwd, env=environment(), stdout=subprocess.PIPE,
+    env = dict(environment(), PWD=os.path.abspath(cwd))  # as a shell there has it: OpenFOAM compares the two
+    proc = subprocess.Popen(full, cwd=cwd, env=env, stdout=subprocess.PIPE,
                             stderr=subprocess.STDOUT, text=True, errors="replace")
     lines = []
     with open(log, "w") as out:
@@ -83,8 +85,8 @@ def run(args, cwd, log_name, ranks=1, expect_success=True, gas=DEFAULT_GAS_LAYOU
 def start(args, cwd, log_name, ranks=1, gas=DEFAULT_GAS_LAYOUT):
     """Start a program in the background (its own process group), output to cwd/log_name."""
     log = open(os.path.join(cwd, log_name), "w")
-    return subprocess.Popen(command(args, ranks, gas), cwd=cwd, env=environment(), stdout=log,
-                            stderr=subprocess.STDOUT, start_new_session=True)
+    return subprocess.Popen(command(args, ranks, gas), cwd=cwd, env=dict(environment(), PWD=os.path.abspath(cwd)),
+                            stdout=log, stderr=subprocess.STDOUT, start_new_session=True)
 
 
 def write_decompose_dict(case_path, split):

@@ -559,7 +559,7 @@ RESTART = [
     ("marker's removed count negative", marker_edit(r"removedParticles\s+0;", "removedParticles -3;"),
      ["removedParticles: -3: a count cannot be negative", "edited or damaged"]),
     ("marker's engine misspelt", marker_edit(r"engine\s+liggghts;", "engine           liggghts2;"),
-     ["engine: liggghts2: the engines are liggghts and hard_sphere"]),
+     ["engine: liggghts2: the engines are", "hard_sphere", "liggghts"]),
     ("killed while writing the DEM restart", killed_while_writing,
      ["the checkpoint at t = 0.02 s is incomplete", "tfdem resume <case> moves it aside", "start from the time before"]),
     ("fresh start over checkpoints", restart_fresh_over_checkpoints,

@@ -4,7 +4,9 @@
 #include <cfenv>
 #include <fstream>
 
+#include "liggghts_engine.h"
 #include "tfdem/config.h"
+#include "tfdem/hard_sphere/engine.h"
 
 namespace {
 
@@ -54,8 +56,10 @@ TEST(Config, ValidFileGivesTypedValues) {
   const CouplingConfig c = parse_coupling_config("coupling.yaml", kValid);
   EXPECT_DOUBLE_EQ(c.gas.viscosity, 1.8e-5);
   EXPECT_EQ(c.particle_diameters, std::vector<double>{0.0025});
-  EXPECT_EQ(c.dem_script, "in.bed");
-  EXPECT_EQ(c.coupling_interval, 50);
+  EXPECT_EQ(c.engine, "liggghts");  // the default
+  const auto &liggghts = static_cast<const LiggghtsSettings &>(*c.engine_settings);
+  EXPECT_EQ(liggghts.script, "in.bed");
+  EXPECT_EQ(liggghts.coupling_interval, 50);
   EXPECT_EQ(c.transfer.method, TransferMethod::PerParticle);
   EXPECT_EQ(c.transfer.law, drag::Law::Beetstra);
   EXPECT_DOUBLE_EQ(c.transfer.gas.density, 1.2);
@@ -149,7 +153,7 @@ TEST(Config, UnclosedQuoteIsNamed) {
 
 TEST(Config, CouplingIntervalLeftOutIsDerivedBySolver) {
   const auto c = parse_coupling_config("coupling.yaml", replaced(kValid, "  coupling_interval: 50\n", ""));
-  EXPECT_EQ(c.coupling_interval, 0);  // 0: the solver takes deltaT / the DEM step
+  EXPECT_EQ(static_cast<const LiggghtsSettings &>(*c.engine_settings).coupling_interval, 0);  // deltaT / the DEM step
 }
 
 // Optional keys are known when absent too: a misspelt one is answered with its name
@@ -182,16 +186,18 @@ coupling:
 
 TEST(Config, HardSphereEngine) {
   const CouplingConfig c = parse_coupling_config("coupling.yaml", kHardSphere);
-  EXPECT_EQ(c.engine, Engine::HardSphere);
-  EXPECT_EQ(c.dem_particles, "bed.data");
-  EXPECT_EQ(c.hard_sphere.restitution, (std::vector<double>{0.97, 0.96, 0.96, 0.95}));  // row by row
-  EXPECT_EQ(c.hard_sphere.tangential_restitution, std::vector<double>{0.33});
-  EXPECT_EQ(c.hard_sphere.wall_restitution, (std::vector<double>{0.9, 0.8}));
-  EXPECT_EQ(c.hard_sphere.wall_friction, std::vector<double>{0.1});  // the particles' scalar
-  EXPECT_DOUBLE_EQ(c.hard_sphere.elastic_within, 1e-5);
+  EXPECT_EQ(c.engine, "hard_sphere");
+  const auto &h = static_cast<const hard_sphere::HardSphereOptions &>(*c.engine_settings);
+  EXPECT_EQ(h.particles, "bed.data");
+  EXPECT_EQ(h.restitution, (std::vector<double>{0.97, 0.96, 0.96, 0.95}));  // row by row
+  EXPECT_EQ(h.tangential_restitution, std::vector<double>{0.33});
+  EXPECT_EQ(h.wall_restitution, (std::vector<double>{0.9, 0.8}));
+  EXPECT_EQ(h.wall_friction, std::vector<double>{0.1});  // the particles' scalar
+  EXPECT_DOUBLE_EQ(h.elastic_within, 1e-5);
   const CouplingConfig again = parse_coupling_config("described.yaml", describe(c));
-  EXPECT_EQ(again.hard_sphere.restitution, c.hard_sphere.restitution);
-  EXPECT_EQ(again.hard_sphere.wall_tangential_restitution, std::vector<double>{0.33});
+  const auto &back = static_cast<const hard_sphere::HardSphereOptions &>(*again.engine_settings);
+  EXPECT_EQ(back.restitution, h.restitution);
+  EXPECT_EQ(back.wall_tangential_restitution, std::vector<double>{0.33});
 }
 
 // e_n = 0 is outside what binary collisions can run, for the particles and for the walls
@@ -208,7 +214,7 @@ TEST(Config, EachEngineRefusesTheOthersKeys) {
   const auto p = problems_of(replaced(kHardSphere, "  particles: bed.data\n", "  script: in.bed\n  coupling_interval: 10\n"));
   EXPECT_TRUE(contains(p, "dem.particles: missing (required)"));
   EXPECT_TRUE(contains(p, "dem.script: applies to the liggghts engine, not to dem.engine: hard_sphere"));
-  EXPECT_TRUE(contains(p, "dem.coupling_interval: applies to the liggghts (the hard-sphere engine's flow step is"));
+  EXPECT_TRUE(contains(p, "dem.coupling_interval: applies to the liggghts engine, not to dem.engine: hard_sphere"));
   const auto q = problems_of(replaced(kValid, "  coupling_interval: 50\n", "  coupling_interval: 50\n  particles: bed.data\n"));
   ASSERT_EQ(q.size(), 1u);
   EXPECT_TRUE(contains(q, "dem.particles: applies to the hard_sphere engine, not to dem.engine: liggghts")) << q[0];

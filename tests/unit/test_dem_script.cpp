@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "tfdem/dem_script.h"
+#include "dem_script.h"
 
 namespace {
 

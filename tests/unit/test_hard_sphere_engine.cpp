@@ -19,6 +19,7 @@ namespace {
 
 using namespace tfdem;
 using tfdem::hard_sphere::HardSphereEngine;
+using tfdem::hard_sphere::HardSphereOptions;
 
 const double kGravity[3] = {0, -9.81, 0};
 

@@ -32,41 +32,76 @@ class ConfigError : public std::runtime_error {
   std::vector<std::string> problems_;
 };
 
-// A mapping in a YAML file with its dotted path; records problems instead of throwing.
+// A key as its reader declares it: its name, its unit ("" for none) and what it sets, one line.
+// The configuration reference is written from these declarations (tfdem-config-reference).
+struct Key {
+  std::string name, unit, doc;
+};
+
+// What one read declared and found: for the reference (a schema walk, no document) and for the
+// effective configuration the solver prints (the values read, defaults included).
+struct KeyRecord {
+  std::string path;         // dotted, e.g. coupling.void_fraction.method
+  std::string kind;         // a number, a whole number, true or false, ..., a section
+  std::string unit, doc;
+  std::string fallback;     // the default as text; "required" when there is none
+  std::string range;        // [min, max], or the choices
+  std::string condition;    // when the key applies, e.g. "dem.engine: liggghts"; "" always
+  std::string value;        // the value read, as YAML text (the default when absent)
+  bool given = false;       // the document gives it
+};
+
+// A mapping in a YAML file with its dotted path; records problems instead of throwing, and
+// every read as a KeyRecord.
 class ConfigSection {
  public:
   // The whole document of `file` (its text in `text`); problems go to `problems`.
   ConfigSection(const std::string &file, const std::string &text, std::vector<std::string> &problems);
+  // An empty document read to list the keys (the reference): nothing is missing, every section
+  // is walked, and the records are the declarations.
+  static ConfigSection schema(std::vector<std::string> &problems);
   ~ConfigSection();
   ConfigSection(ConfigSection &&) noexcept;
 
   // Sub-mapping `key`; an empty section (all reads give defaults) when absent and optional.
-  ConfigSection section(const std::string &key, bool required = false);
+  ConfigSection section(const Key &key, bool required = false);
   // Number in [min, max]; `fallback` when absent and not required.
-  double number(const std::string &key, double fallback, double min, double max, bool required = false);
+  double number(const Key &key, double fallback, double min, double max, bool required = false);
   // Whole number in [min, max].
-  long integer(const std::string &key, long fallback, long min, long max, bool required = false);
-  bool boolean(const std::string &key, bool fallback);
-  std::string text(const std::string &key, const std::string &fallback, bool required = false);
+  long integer(const Key &key, long fallback, long min, long max, bool required = false);
+  bool boolean(const Key &key, bool fallback);
+  std::string text(const Key &key, const std::string &fallback, bool required = false);
   // A list of numbers in [min, max] (a YAML sequence, or one number); empty when absent.
-  std::vector<double> number_list(const std::string &key, double min, double max, bool required = false);
+  std::vector<double> number_list(const Key &key, double min, double max, bool required = false);
   // A table of numbers in [min, max] row by row: one number, a list, or a list of lists (a
   // matrix, flattened); `fallback` when absent and not required.
-  std::vector<double> number_table(const std::string &key, std::vector<double> fallback, double min, double max,
+  std::vector<double> number_table(const Key &key, std::vector<double> fallback, double min, double max,
                                    bool required = false);
   // A list of texts (a YAML sequence, or one text); empty when absent.
-  std::vector<std::string> text_list(const std::string &key);
+  std::vector<std::string> text_list(const Key &key);
   // Text that must be one of `choices`.
-  std::string choice(const std::string &key, const std::string &fallback, const std::vector<std::string> &choices);
+  std::string choice(const Key &key, const std::string &fallback, const std::vector<std::string> &choices);
+  // Reads that apply only under `condition` (e.g. "dem.engine: liggghts"), for the reference
+  void set_condition(const std::string &condition) { condition_ = condition; }
+  bool is_schema() const { return schema_; }
+  // Every read so far, in reading order (shared with the sections made from this one)
+  const std::vector<KeyRecord> &records() const { return *records_; }
+  // The keys read directly in this section (not in its sub-sections)
+  const std::vector<std::string> &known_keys() const { return known_keys_; }
   // Report keys present but never read, with the nearest read key. Call after all reads.
   void reject_unknown_keys();
   bool has(const std::string &key) const;
+  // The text of a key given as a single value ("" otherwise), for a reader's own parsing
+  std::string raw(const std::string &key) const;
   // Whether an optional key is given, the key known to this section either way (a misspelt
   // one is answered with its name)
   bool given(const std::string &key) {
     known_keys_.push_back(key);
     return has(key);
   }
+  // A key a reader of its own reads (its declaration and the value it found, as text)
+  void declare(const Key &key, const std::string &kind, const std::string &fallback, const std::string &range,
+               const std::string &value);
   // Record a problem with `key` found by the caller's own check.
   void report(const std::string &key, const std::string &message) { problem(key, message); }
   // A key that does not belong here, whatever its value: reported with `message`, not again as
@@ -84,14 +119,26 @@ class ConfigSection {
   std::string where(const std::string &key) const;
   std::string key_path(const std::string &key) const;
   std::optional<YAML::Node> child(const std::string &key, bool required);
+  // Record a read of `key` (its declaration, and the value it gave as text)
+  void record(const Key &key, const std::string &kind, const std::string &fallback, const std::string &range,
+              const std::string &value);
   template <typename T>
-  T scalar(const std::string &key, T fallback, T min, T max, bool required, const char *kind);
+  T scalar(const Key &key, T fallback, T min, T max, bool required, const char *kind);
 
   std::string file_;
   std::unique_ptr<YAML::Node> node_;
   std::string path_;
   std::vector<std::string> *problems_;
   std::vector<std::string> known_keys_;
+  std::shared_ptr<std::vector<KeyRecord>> records_ = std::make_shared<std::vector<KeyRecord>>();
+  std::string condition_;
+  bool schema_ = false;
+};
+
+// A particle engine's own settings (its part of coupling.yaml's dem section), read by the
+// reader it registers (tfdem/engine_registry.h); the engine knows its concrete type.
+struct EngineSettings {
+  virtual ~EngineSettings() = default;
 };
 
 // What the coupler writes besides the gas fields (coupling.yaml `output:`).
@@ -106,34 +153,8 @@ struct OutputOptions {
   bool particles_vtk = true;
 };
 
-// The hard-sphere engine's collision model (coupling.yaml dem.hard_sphere; seed 001 eqs. 17-21):
-// normal restitution e_n, tangential restitution beta_0 and friction mu, between particle
-// types (one value for every pair, or an n x n matrix row by row) and against the walls (one
-// value, or one per type; the particles' own when the scalar is given and dem.hard_sphere.wall
-// is absent).
-struct HardSphereOptions {
-  std::vector<double> restitution, tangential_restitution, friction;
-  std::vector<double> wall_restitution, wall_tangential_restitution, wall_friction;
-  // TC model (Luding & McNamara 1998): a collision within this many seconds of either
-  // particle's previous one is elastic and smooth (0: off)
-  double elastic_within = 1e-5;
-  // Collisions per particle in one flow step above which the run stops (inelastic collapse)
-  long max_collisions_per_particle = 10000;
-  // N_c counts the pairs closer than this fraction of their mean diameter (hard spheres
-  // touch only at the instant they collide)
-  double contact_gap = 0.01;
-  // false: the particles stay where they are (a fixed bed, as a LIGGGHTS script without
-  // time integration)
-  bool move = true;
-};
-
-// The particle engine (coupling.yaml dem.engine).
-enum class Engine { Liggghts, HardSphere };
-const std::vector<std::string> &engine_names();
-
 // Module readers: each module owns its keys.
 drag::Gas read_gas(ConfigSection &section);
-HardSphereOptions read_hard_sphere(ConfigSection &section);
 VoidFractionOptions read_void_fraction(ConfigSection &section);
 OutputOptions read_output(ConfigSection &section);
 
@@ -145,17 +166,15 @@ struct CouplingConfig {
   // particle must have one of them; the 2-D rule's cell depth; the scene check uses the smallest.
   std::vector<double> particle_diameters;
   double particle_density = 0.0;   // rho_p (kg/m^3)
-  Engine engine = Engine::Liggghts;
-  std::string dem_script;         // liggghts: the LIGGGHTS input, relative to the case directory
-  long coupling_interval = 0;     // liggghts: DEM steps per gas step; 0 (left out): deltaT / the DEM step
-  std::string dem_particles;      // hard_sphere: the particles' LIGGGHTS data file
-  HardSphereOptions hard_sphere;  // hard_sphere: the collision model
+  std::string engine;             // dem.engine: a registered engine's name
+  std::shared_ptr<const EngineSettings> engine_settings;  // its own keys of the dem section
   std::vector<std::string> outlets;  // gas patches through which particles leave the DEM
   TransferOptions transfer;       // method, drag law, gas
   VoidFractionOptions void_fraction;
   bool pressure_gradient_force = true;  // -V_p grad p of eq. 28
   bool void_fraction_time_derivative = true;  // d(eps)/dt in gas continuity
   OutputOptions output;
+  std::vector<KeyRecord> keys;     // every key read, with its value (defaults included)
 };
 
 // Parse coupling.yaml from text; throws ConfigError listing every problem.
@@ -164,6 +183,8 @@ CouplingConfig parse_coupling_config(const std::string &file, const std::string 
 CouplingConfig load_coupling_config(const std::string &file);
 // The effective configuration, every value including defaults, as YAML.
 std::string describe(const CouplingConfig &config);
+// Every key coupling.yaml takes, with every registered engine's, as its readers declare them.
+std::vector<KeyRecord> coupling_reference();
 
 }  // namespace tfdem
 

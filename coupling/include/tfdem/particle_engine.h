@@ -27,6 +27,27 @@ struct DemResume {
   std::vector<OutputSize> outputs;   // the engine's output files at the checkpoint
 };
 
+struct CouplingConfig;
+
+// The case as the solver knows it when an engine starts, for the engine's own checks.
+struct CaseAtStart {
+  const CouplingConfig *config = nullptr;
+  double gravity[3] = {0, 0, 0};  // m/s^2 (constant/g)
+  double gas_step = 0;            // s
+  bool adjustable_gas_step = false;  // controlDict's adjustTimeStep
+  double fastest_inflow = 0;      // m/s: the largest |U| where the gas flows in
+  double fall_speed = 0;          // m/s: a free fall over the domain's extent along gravity
+  double cell_size[3] = {0, 0, 0};  // the gas cells (m)
+  bool resuming = false;
+};
+
+// What an engine says of itself at the start: lines for the log (each with its "TFDEM ..."
+// prefix), warnings, and a refusal that stops the run, naming the cause and the fix.
+struct StartReport {
+  std::vector<std::string> lines, warnings;
+  std::string refusal;
+};
+
 class ParticleEngine {
  public:
   virtual ~ParticleEngine() = default;
@@ -77,6 +98,23 @@ class ParticleEngine {
     static const std::vector<std::string> none;
     return none;
   }
+
+  // Its checks of itself against the case (time steps, gravity, contacts), and what it reports
+  // at the start and at the end of a run
+  virtual StartReport check_start(const CaseAtStart & /*context*/) const { return {}; }
+  virtual std::string end_report() const { return ""; }
+  // The elastic energy (J) an overlap `depth` between particles of types a and b (radii ra,
+  // rb) stores: negative for an engine whose contacts store none
+  virtual double overlap_energy(int /*a*/, int /*b*/, double /*ra*/, double /*rb*/, double /*depth*/) const {
+    return -1;
+  }
+  // What to look at when particles vanished from the engine between two intervals
+  virtual std::string lost_particles_hint() const {
+    return "Particles meant to leave through a gas outlet need it in coupling.yaml dem.outlets.";
+  }
+  // A warning when the start's deepest overlap (a fraction of d) is one the engine keeps as it
+  // is rather than springs apart; "" for none
+  virtual std::string kept_overlaps_warning(double /*deepest*/) const { return ""; }
 
   // The box the particles move in and, per axis and side (lower, upper), whether particles
   // crossing that face are dropped by the engine (LIGGGHTS boundary f); a face an outlet

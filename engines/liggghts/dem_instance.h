@@ -16,7 +16,7 @@
 #include <utility>
 #include <vector>
 
-#include "tfdem/dem_script.h"
+#include "dem_script.h"
 #include "tfdem/particle_engine.h"
 
 namespace LAMMPS_NS {
@@ -49,6 +49,11 @@ class DemInstance : public ParticleEngine {
 
   std::string name() const override { return "LIGGGHTS"; }
   std::string key() const override { return "liggghts"; }
+  // Gravity against constant/g, each contact's time against the DEM step, the gas step a
+  // whole number of DEM steps, the scene check, the processor grid's balance (start_checks.cpp)
+  StartReport check_start(const CaseAtStart &context) const override;
+  double overlap_energy(int a, int b, double ra, double rb, double depth) const override;
+  std::string lost_particles_hint() const override;
   // Advance `seconds` as a whole number of DEM steps (the coupler checks at start that the gas
   // step is one)
   void advance(double seconds, bool sample_contacts) override;
@@ -143,6 +148,7 @@ class DemInstance : public ParticleEngine {
   void continue_outputs(const DemResume &resume);
 
   MPI_Comm comm_;
+  std::string log_file_;
   std::unique_ptr<DemConsole> console_;
   LAMMPS_NS::LAMMPS *lmp_ = nullptr;
   LAMMPS_NS::FixTfdemCoupling *fix_ = nullptr;

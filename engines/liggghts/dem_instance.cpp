@@ -35,7 +35,7 @@
 #include "modify.h"
 #include "output.h"
 #include "tfdem/data_file.h"
-#include "tfdem/dem_script.h"
+#include "dem_script.h"
 #include "tfdem_liggghts.h"
 #include "universe.h"
 #include "update.h"
@@ -190,7 +190,7 @@ const char *kSetAside = ".tfdem-resume";
 
 DemInstance::DemInstance(MPI_Comm comm, const std::string &script, const std::string &log_file,
                          const DemResume *resume)
-    : comm_(comm) {
+    : comm_(comm), log_file_(log_file) {
   const std::string to_run = script_to_run(script, resume);
   const int rank = rank_of(comm);
   if (resume) on_rank_0([&] { prepare_outputs(*resume); });
@@ -223,6 +223,13 @@ DemInstance::DemInstance(MPI_Comm comm, const std::string &script, const std::st
   for (int i = 0; i < output->ndump; ++i)
     if (output->every_dump[i] > 0 && resume->step % output->every_dump[i] == 0) output->last_dump[i] = resume->step;
   on_rank_0([&] { continue_outputs(*resume); });
+}
+
+std::string DemInstance::lost_particles_hint() const {
+  return "LIGGGHTS drops particles that leave its domain. Likely causes: a contact that blew up (DEM step too large "
+         "for k_n, or the damping; see the contact-time lines above), a particle pushed through a wall, or an open "
+         "side of the DEM's box. Particles meant to leave through a gas outlet need it in coupling.yaml dem.outlets "
+         "and a DEM box that reaches beyond it (LIGGGHTS boundary m). DEM log: \"" + log_file_ + ".screen\"";
 }
 
 void DemInstance::on_rank_0(const std::function<void()> &step) const {

@@ -18,6 +18,7 @@
 #ifndef TFDEM_HARD_SPHERE_ENGINE_H
 #define TFDEM_HARD_SPHERE_ENGINE_H
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,31 @@
 #include "tfdem/particle_engine.h"
 
 namespace tfdem::hard_sphere {
+
+// The hard-sphere engine's keys of coupling.yaml's dem section: the particles' data file and
+// the collision model (dem.hard_sphere; seed 001 eqs. 17-21): normal restitution e_n,
+// tangential restitution beta_0 and friction mu, between particle types (one value for every
+// pair, or an n x n matrix row by row) and against the walls (one value, or one per type; the
+// particles' own when the scalar is given and dem.hard_sphere.wall is absent).
+struct HardSphereOptions : EngineSettings {
+  std::string particles;  // the particles' LIGGGHTS data file, relative to the case
+  std::vector<double> restitution, tangential_restitution, friction;
+  std::vector<double> wall_restitution, wall_tangential_restitution, wall_friction;
+  // TC model (Luding & McNamara 1998): a collision within this many seconds of either
+  // particle's previous one is elastic and smooth (0: off)
+  double elastic_within = 1e-5;
+  // Collisions per particle in one flow step above which the run stops (inelastic collapse)
+  long max_collisions_per_particle = 10000;
+  // N_c counts the pairs closer than this fraction of their mean diameter (hard spheres
+  // touch only at the instant they collide)
+  double contact_gap = 0.01;
+  // false: the particles stay where they are (a fixed bed, as a LIGGGHTS script without
+  // time integration)
+  bool move = true;
+};
+
+// The dem section's hard-sphere keys (their part of the configuration reference)
+std::shared_ptr<const EngineSettings> read_options(ConfigSection &dem);
 
 class HardSphereEngine : public ParticleEngine {
  public:
@@ -38,6 +64,11 @@ class HardSphereEngine : public ParticleEngine {
 
   std::string name() const override { return "the hard-sphere engine"; }
   std::string key() const override { return "hard_sphere"; }
+  // The particles, the flow step and gravity, and the data file's overlaps taken as touching
+  StartReport check_start(const CaseAtStart &context) const override;
+  // The collisions of the run
+  std::string end_report() const override;
+  std::string kept_overlaps_warning(double deepest) const override;
   void advance(double seconds, bool sample_contacts) override;
   long long step() const override { return step_; }
   double time() const override { return flight_.clock(); }

@@ -1,4 +1,4 @@
-#include "tfdem/dem_script.h"
+#include "dem_script.h"
 
 #include <algorithm>
 #include <sstream>

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "liggghts_engine.h"
 #include "tfdem/config.h"
 #include "tfdem/contact.h"
 #include "tfdem/scene_check.h"
@@ -163,7 +164,8 @@ int main(int argc, char **argv) {
     scene.particle_density = config.particle_density;
     scene.gas = config.gas;
     scene.drag_law = config.transfer.law;
-    scene.coupling_interval = config.coupling_interval;
+    const auto *liggghts = dynamic_cast<const tfdem::LiggghtsSettings *>(config.engine_settings.get());
+    scene.coupling_interval = liggghts ? liggghts->coupling_interval : 0;
     scene.gas_velocity = values["--gas-velocity"];
     scene.cell_size = values["--cell-size"];
     scene.normal_stiffness = values["--kn"];

@@ -1,0 +1,75 @@
+// tfdem-config-reference: the reference of coupling.yaml as Markdown, written from the readers'
+// own declarations (tfdem::coupling_reference, every registered engine's keys included), so it
+// cannot drift from what the solver accepts. docs/reference.py puts it into the docs site.
+#include <cstdio>
+#include <iostream>
+#include <map>
+#include <string>
+
+#include "tfdem/config.h"
+#include "tfdem/engine_registry.h"
+
+namespace {
+
+std::string cell(std::string text) {
+  for (std::size_t at = text.find('|'); at != std::string::npos; at = text.find('|', at + 2)) text.replace(at, 1, "\\|");
+  return text.empty() ? " " : text;
+}
+
+std::string name_of(const std::string &path) {
+  const std::size_t dot = path.rfind('.');
+  return dot == std::string::npos ? path : path.substr(dot + 1);
+}
+
+int depth_of(const std::string &path) {
+  int depth = 0;
+  for (char c : path) depth += c == '.';
+  return depth;
+}
+
+// The whole file with every key at its default, as a user would write it
+void print_block(const std::vector<tfdem::KeyRecord> &keys) {
+  std::cout << "```yaml\n";
+  for (const tfdem::KeyRecord &k : keys) {
+    const std::string indent(2 * depth_of(k.path), ' ');
+    const std::string when = k.condition.empty() ? "" : "  # " + k.condition;
+    if (k.kind == "a section")
+      std::cout << indent << name_of(k.path) << ":" << when << "\n";
+    else
+      std::cout << indent << name_of(k.path) << ": "
+                << (k.fallback == "required" ? "<required>" : k.fallback.empty() ? "<none>" : k.fallback) << when
+                << "\n";
+  }
+  std::cout << "```\n\n";
+}
+
+}  // namespace
+
+int main(int argc, char **argv) {
+  if (argc > 1) {
+    std::fprintf(stderr, "usage: tfdem-config-reference (no arguments): coupling.yaml's reference as Markdown\n");
+    return 2;
+  }
+  const std::vector<tfdem::KeyRecord> keys = tfdem::coupling_reference();
+  std::cout << "# coupling.yaml\n\n"
+            << "Every case's `coupling.yaml` sets what couples the gas and the particles. This page is written by "
+               "`tfdem-config-reference` from the parser's own declarations: every key the solver accepts, its "
+               "type, unit, default, range or choices, and what it sets. A key given twice, an unknown key (named "
+               "with the nearest valid one) or a value out of range stops the run before it starts, with every "
+               "problem of the file listed at once.\n\n"
+            << "## The whole file, at its defaults\n\n";
+  print_block(keys);
+  std::cout << "## The particle engines (`dem.engine`)\n\n";
+  for (const std::string &name : tfdem::engine_names())
+    std::cout << "- `" << name << "`" << (name == tfdem::default_engine_name() ? " (the default)" : "") << ": "
+              << tfdem::find_engine(name)->summary << "\n";
+  std::cout << "\n## Every key\n\n"
+            << "| key | type | unit | default | range or choices | applies when | what it sets |\n"
+            << "|---|---|---|---|---|---|---|\n";
+  for (const tfdem::KeyRecord &k : keys) {
+    if (k.kind == "a section") continue;
+    std::cout << "| `" << k.path << "` | " << cell(k.kind) << " | " << cell(k.unit) << " | " << cell(k.fallback)
+              << " | " << cell(k.range) << " | " << cell(k.condition) << " | " << cell(k.doc) << " |\n";
+  }
+  return 0;
+}
