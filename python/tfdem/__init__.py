@@ -19,5 +19,6 @@ Put ``<repository>/python`` on PYTHONPATH (``scripts/tfdem-env.sh`` and ctest do
 import os
 
 SOURCE_DIR = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
-TUTORIALS = os.path.join(SOURCE_DIR, "tutorials")
+TUTORIALS = os.path.join(SOURCE_DIR, "tutorials")  # cases a user copies
+STUDIES = os.path.join(SOURCE_DIR, "studies")  # reproductions, each with its runner, report and results
 BUILD_DIR = os.environ.get("TFDEM_BUILD", os.path.join(SOURCE_DIR, "build"))

@@ -1,4 +1,4 @@
-"""Seed 000's study pipeline end to end on a short run (tutorials/seed000_study).
+"""Seed 000's study pipeline end to end on a short run (studies/seed000).
 
 1. `study.py run` and `report` on the uniform bed, TF-DEM (method 1) and the TFM peer, 0.2 s
    each (windows and intervals scale with the end time): every figure the two runs allow, the
@@ -25,12 +25,12 @@ import time
 import numpy
 import yaml
 
-from tfdem import SOURCE_DIR, outputs
+from tfdem import SOURCE_DIR, STUDIES, outputs
 from tfdem.case import Case
 from tfdem.run import environment
 from tfdem_testlib import Checks, scratch
 
-STUDY = os.path.join(SOURCE_DIR, "tutorials", "seed000_study")
+STUDY = os.path.join(STUDIES, "seed000")
 
 
 def study(args, env=None):

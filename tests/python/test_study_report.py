@@ -22,19 +22,19 @@ import tempfile
 
 import numpy
 
+from tfdem import STUDIES
 from tfdem.bed import (BedOutputs, cross_l1, l1_noise_floor, l1_permutation_test, mirror_mean, pairwise_l1,
                        section_pressure_drop, write_bed_probes)
 from tfdem.case import Case
 from tfdem.stats import (autocorrelation, blocking_curve, chi_square_quantile, difference, ensemble,
                          integrated_autocorrelation_time, sokal_window, spread_ratio_range)
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tutorials", "seed000_study"))
+STUDY = os.path.join(STUDIES, "seed000")
+sys.path.insert(0, STUDY)
 import headline  # noqa: E402
 import report  # noqa: E402
 import study as study_definition  # noqa: E402
 from record import Record, RecordError  # noqa: E402
-
-STUDY = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tutorials", "seed000_study")
 
 failures = []
 

@@ -1,4 +1,4 @@
-"""tfm_budget.py's pieces (tutorials/seed000_study) on hand-made fields with answers by hand:
+"""tfm_budget.py's pieces (studies/seed000) on hand-made fields with answers by hand:
 
 - the Gauss-linear gradient of linear fields with their boundary values: the slope, exactly;
 - conduction of a linear Theta with a uniform kappa: zero inside, -/+ kappa c / dy in the top
@@ -16,7 +16,9 @@ import sys
 
 import numpy
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tutorials", "seed000_study"))
+from tfdem import STUDIES
+
+sys.path.insert(0, os.path.join(STUDIES, "seed000"))
 import tfm_budget as budget  # noqa: E402
 
 failures = []

@@ -9,7 +9,7 @@ cells. Frames: VTK/particles_<t>.vtk at t = 5..20 s of runs/<bed>_m1_r<k>, k = 1
 Writes results/contact_definitions.json and results/contact_definitions.md and prints the
 markdown table: each definition's mean over the realizations +- the standard error of the
 realizations' means, beside the paper's values. Run: . scripts/tfdem-env.sh;
-/usr/bin/python3 tutorials/seed000_study/contact_definitions.py (about a minute, one core)."""
+/usr/bin/python3 studies/seed000/contact_definitions.py (about a minute, one core)."""
 import json
 import os
 
