@@ -11,11 +11,6 @@
 
 namespace {
 
-std::string cell(std::string text) {
-  for (std::size_t at = text.find('|'); at != std::string::npos; at = text.find('|', at + 2)) text.replace(at, 1, "\\|");
-  return text.empty() ? " " : text;
-}
-
 std::string name_of(const std::string &path) {
   const std::size_t dot = path.rfind('.');
   return dot == std::string::npos ? path : path.substr(dot + 1);
@@ -27,20 +22,44 @@ int depth_of(const std::string &path) {
   return depth;
 }
 
-// The whole file with every key at its default, as a user would write it
+// The condition of the key's nearest enclosing section (sections come before their keys)
+std::string parent_condition(const std::map<std::string, std::string> &section_conditions, const std::string &path) {
+  const std::size_t dot = path.rfind('.');
+  if (dot == std::string::npos) return "";
+  const auto found = section_conditions.find(path.substr(0, dot));
+  return found == section_conditions.end() ? "" : found->second;
+}
+
+// The whole file with every key at its default, as a user would write it; a condition is
+// shown where it starts, not again on every key inside its section
 void print_block(const std::vector<tfdem::KeyRecord> &keys) {
+  std::map<std::string, std::string> section_conditions;
   std::cout << "```yaml\n";
   for (const tfdem::KeyRecord &k : keys) {
     const std::string indent(2 * depth_of(k.path), ' ');
-    const std::string when = k.condition.empty() ? "" : "  # " + k.condition;
-    if (k.kind == "a section")
+    const bool new_condition = !k.condition.empty() && k.condition != parent_condition(section_conditions, k.path);
+    const std::string when = new_condition ? "  # only with " + k.condition : "";
+    if (k.kind == "a section") {
+      section_conditions[k.path] = k.condition;
       std::cout << indent << name_of(k.path) << ":" << when << "\n";
-    else
+    } else {
       std::cout << indent << name_of(k.path) << ": "
                 << (k.fallback == "required" ? "<required>" : k.fallback.empty() ? "<none>" : k.fallback) << when
                 << "\n";
+    }
   }
   std::cout << "```\n\n";
+}
+
+// One key as a LAMMPS-style entry: its heading, what it sets, then its type, unit, default,
+// range and condition on one line
+void print_key(const tfdem::KeyRecord &k) {
+  std::cout << "### `" << k.path << "`\n\n" << k.doc << "\n\n" << "*" << k.kind << "*";
+  if (!k.unit.empty()) std::cout << " · unit " << k.unit;
+  std::cout << (k.fallback == "required" ? " · required" : " · default " + (k.fallback.empty() ? "none" : k.fallback));
+  if (!k.range.empty()) std::cout << (k.range[0] == '[' ? " · range " : " · choices ") << k.range;
+  if (!k.condition.empty()) std::cout << " · only with `" << k.condition << "`";
+  std::cout << "\n\n";
 }
 
 }  // namespace
@@ -63,13 +82,12 @@ int main(int argc, char **argv) {
   for (const std::string &name : tfdem::engine_names())
     std::cout << "- `" << name << "`" << (name == tfdem::default_engine_name() ? " (the default)" : "") << ": "
               << tfdem::find_engine(name)->summary << "\n";
-  std::cout << "\n## Every key\n\n"
-            << "| key | type | unit | default | range or choices | applies when | what it sets |\n"
-            << "|---|---|---|---|---|---|---|\n";
+  std::cout << "\n";
   for (const tfdem::KeyRecord &k : keys) {
-    if (k.kind == "a section") continue;
-    std::cout << "| `" << k.path << "` | " << cell(k.kind) << " | " << cell(k.unit) << " | " << cell(k.fallback)
-              << " | " << cell(k.range) << " | " << cell(k.condition) << " | " << cell(k.doc) << " |\n";
+    if (k.kind == "a section" && depth_of(k.path) == 0)
+      std::cout << "## " << k.path << "\n\n" << (k.doc.empty() ? "" : k.doc + "\n\n");
+    else if (k.kind != "a section")
+      print_key(k);
   }
   return 0;
 }

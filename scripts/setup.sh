@@ -3,8 +3,9 @@
 #   1. Debian packages (OpenFOAM, LIGGGHTS, Open MPI, yaml-cpp, GoogleTest, plotting);
 #   2. OpenFOAM v1912 headers from Debian's own openfoam source package (Debian ships none),
 #      unpacked to .cache/ with lnInclude folders for the libraries we include;
-#   3. one CMake build of coupling/, openfoam_solver/ and liggghts_fixes/ into build/.
-# Each step is skipped when its result is already there.
+#   3. one CMake build of coupling/, engines/ and openfoam_solver/ into build/.
+# Each step is skipped when its result is already there; with --if-built the build too when
+# one exists (the CMake build otherwise rebuilds what changed).
 set -euo pipefail
 
 TOP=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -14,7 +15,7 @@ OPENFOAM_VERSION=1912
 OPENFOAM_SRC="$CACHE/openfoam-src"
 APT_PACKAGES=(openfoam libopenfoam liggghts libliggghts-dev libopenmpi-dev openmpi-bin
               libyaml-cpp-dev libgtest-dev googletest cmake g++ make dpkg-dev bzip2 xz-utils
-              python3 python3-matplotlib python3-yaml)
+              python3 python3-matplotlib python3-yaml mkdocs)
 OPENFOAM_LNINCLUDE_DIRS=(OpenFOAM OSspecific/POSIX finiteVolume meshTools)
 
 log() { printf '[tfdem setup] %s\n' "$*"; }
@@ -98,5 +99,10 @@ build() {
 
 install_packages
 fetch_openfoam_headers
+# --if-built: the commands that only run what a build has (tfdem new, pack, stats, ...) build
+# only when there is none; run, test, study, pareto and setup build what changed
+if [ "${1:-}" = "--if-built" ] && [ -x "$BUILD/openfoam_solver/tfdemFoam" ]; then
+    exit 0
+fi
 build
 log "ready"

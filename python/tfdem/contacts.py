@@ -13,7 +13,7 @@ Gaps are fractions of the diameter: a pair a, b is in contact when its surface g
 gap * (r_a + r_b), i.e. its centre distance below (r_a + r_b)(1 + gap); a particle touches a
 plane wall when its surface gap is below gap * d_i = 2 gap r_i, i.e. its centre lies within
 r_i (1 + 2 gap) of the plane (the same gap in units of d as for two equal spheres). gap = 0
-is the overlap (> 0) that the coupling fix's N_c uses (liggghts_fixes/fix_tfdem_coupling.cpp,
+is the overlap (> 0) that the coupling fix's N_c uses (engines/liggghts/fix_tfdem_coupling.cpp,
 count_touching_neighbours: pairs of the granular pair list only, no walls).
 
 Arrays: positions (n, 3), radii (n,), velocities (n, 3), NumPy; masks are boolean (n,)."""

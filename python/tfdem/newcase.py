@@ -91,6 +91,55 @@ SCHEMA = {
     "dem": {"engine": "liggghts", "tangential_restitution": "derived", "elastic_within": None,
             "max_collisions_per_particle": None, "contact_gap": None, "move": None},
 }
+# Every key of bed.yaml: its unit and what it sets (the reference page, docs/reference.py, is
+# written from these beside SCHEMA's defaults; a key without a line here fails its test)
+BED_KEYS = {
+    "box": ("", "the column the bed stands in"),
+    "box.width": ("m", "the column's width, x across"),
+    "box.height": ("m", "the column's height, y up (gravity along -y); the lid at the top"),
+    "box.depth": ("m", "the column's depth, z; one_layer: one particle diameter (seed 000's 2-D rule)"),
+    "particles": ("", "the particles: one density, one to nine sizes, their contacts"),
+    "particles.density": ("kg/m^3", "the particles' density, one for every size"),
+    "particles.sizes": ("", "one to nine sizes, each with a diameter and a number, or a mass_fraction and the count"),
+    "particles.sizes[].diameter": ("m", "the size's diameter"),
+    "particles.sizes[].number": ("", "how many particles of this size"),
+    "particles.sizes[].mass_fraction": ("", "this size's share of the bed's mass (the fractions sum to 1)"),
+    "particles.count": ("", "the particles of all sizes, when the sizes give mass fractions"),
+    "particles.restitution": ("", "normal restitution e_n of particle pairs (the damping follows, seed 001 eq. 27)"),
+    "particles.friction": ("", "Coulomb friction of particle pairs"),
+    "particles.wall": ("", "the walls' own restitution and friction; left out, the pairs'"),
+    "particles.wall.restitution": ("", "e_n of a particle against a wall"),
+    "particles.wall.friction": ("", "friction of a particle against a wall"),
+    "particles.stiffness": ("N/m", "normal stiffness k_n; left out, an impact at U_mf sinks 5 % of d"),
+    "gas": ("", "the gas; left out, air"),
+    "gas.density": ("kg/m^3", "the gas density"),
+    "gas.viscosity": ("Pa s", "the gas dynamic viscosity"),
+    "inflow": ("", "the gas into the bed: through the whole bottom, a plate, or jets"),
+    "inflow.velocity": ("m/s", "superficial gas velocity through the bottom (with jets: through the rest of it)"),
+    "inflow.plate": ("", "a distributor plate below the bed (a porous zone)"),
+    "inflow.plate.pressure_drop_fraction": ("", "the plate's pressure drop at U_mf, a fraction of the bed's weight "
+                                                "per area"),
+    "inflow.jets": ("", "jets through an otherwise closed bottom, each a centre, a width and a velocity"),
+    "inflow.jets[].centre": ("m", "the jet's centre, x"),
+    "inflow.jets[].width": ("m", "the jet's width (its edges on the gas cells' faces)"),
+    "inflow.jets[].velocity": ("m/s", "the jet's gas velocity"),
+    "run": ("", "how long the run goes and how often it writes"),
+    "run.end_time": ("s", "simulated time the run ends at"),
+    "run.write_interval": ("s", "between checkpoints (gas fields, DEM state) and particle files"),
+    "coupling": ("", "coupling.yaml's coupling keys the case takes; left out, the defaults"),
+    "coupling.transfer": ("", "coupling.yaml's coupling.transfer (averaged, per_particle, per_particle_conservative)"),
+    "coupling.drag_law": ("", "coupling.yaml's coupling.drag_law"),
+    "mesh": ("", "the gas cells"),
+    "mesh.cell_size": ("m", "the gas cells' size; left out, four of the largest diameter"),
+    "dem": ("", "the particle engine and its own keys"),
+    "dem.engine": ("", "liggghts (soft spheres) or hard_sphere (seed 001's event-driven engine)"),
+    "dem.tangential_restitution": ("", "hard spheres: beta_0; left out, the soft contacts' (seed 001 eq. 30)"),
+    "dem.elastic_within": ("s", "hard spheres: the TC model's time (coupling.yaml's dem.hard_sphere key)"),
+    "dem.max_collisions_per_particle": ("", "hard spheres: the collisions a flow step may hold per particle"),
+    "dem.contact_gap": ("", "hard spheres: the gap within which N_c counts a pair, of the mean diameter"),
+    "dem.move": ("", "hard spheres: false for particles that stay where they are (a fixed bed)"),
+}
+
 # The hard-sphere engine's own keys of coupling.yaml's dem.hard_sphere (coupling/src/config.cpp
 # read_hard_sphere) that bed.yaml's dem passes through when given (None: the solver's default):
 # (low, high, what); `move` is true or false
@@ -604,7 +653,7 @@ def _lifted_bed_warnings(bed, dv):
 
 # The ranges the project's coupled tests and measured tutorials cover (tests/integration/
 # test_new_case.py, test_drivers_on_new_case.py, test_pressure_balance_3d.py, test_hard_sphere.py;
-# tutorials/your_own_bed, seed000_study, bidisperse_segregation): (low, high, unit, where)
+# tutorials/your_own_bed, studies/seed000, tutorials/bidisperse_segregation): (low, high, unit, where)
 TESTED_RANGES = {
     "particle diameter": (0.001, 0.0025, "m", "1 mm (your_own_bed) to 2.5 mm (seed 000's beds)"),
     "particles.density": (2500.0, 2700.0, "kg/m^3", "glass 2500 to 2700"),
@@ -1084,12 +1133,17 @@ else   # a checkpoint written split made whole
     "$TFDEM_PYTHON" -m tfdem.run reconstruct . > log.reconstruct
 fi
 [ -f log.tfdemFoam ] && mv log.tfdemFoam "log.tfdemFoam.$(date +%Y%m%d-%H%M%S)"
-# Ctrl-C or SIGTERM (timeout, a batch system) reach tfdem-solve too, which has the run write a
-# checkpoint and stop; this script waits for that and says so (a handler, not an ignore: the
-# children must still see them)
-trap ':' INT TERM
+# Ctrl-C or SIGTERM (timeout, a batch system, kill) is passed to tfdem-solve, which has the run
+# write a checkpoint and stop (the same signal sent to the whole group is passed on once); this
+# script waits for that and says so
+tfdem-solve log.tfdemFoam "$ranks" "${{args[@]}}" &
+solver=$!
+trap 'kill -TERM "$solver" 2>/dev/null' INT TERM
+while kill -0 "$solver" 2>/dev/null; do
+    wait "$solver" || true  # a signal ends the wait early: wait on for the solver's end
+done
 status=0
-tfdem-solve log.tfdemFoam "$ranks" "${{args[@]}}" || status=$?
+wait "$solver" || status=$?
 [ "$status" -eq 75 ] && echo "$0: stopped at a checkpoint; ./Allrun $ranks carries on from it"
 "$TFDEM_PYTHON" -m tfdem.summary . || [ "$status" -ne 0 ] || status=$?
 exit "$status"
