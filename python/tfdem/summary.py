@@ -41,11 +41,18 @@ FORCES = ("gas force / weight", "floor force / weight", "wall force / weight", "
 SAME_TIME = 1e-9  # s: two function objects' samples of one gas step (printed at different precisions)
 
 
+def _has_plate(case):
+    """Whether the case has a distributor plate (tfdem new writes it as constant/fvOptions)."""
+    return os.path.isfile(case.file("constant", "fvOptions"))
+
+
 class Pressure:
     """Delta p between the case's lower and upper pressure functions, by time."""
 
     def __init__(self, case):
         functions = [name for name in LOWER if _has_function(case, name)]
+        if _has_plate(case) and "bedPressure" in functions:  # the inlet's Delta p holds the plate's drop too
+            functions = ["bedPressure"]
         if not functions or not _has_function(case, UPPER):
             raise OutputError(f"{case.path}/system/controlDict: no {' or '.join(LOWER)} and {UPPER} function "
                               "objects, so no Delta p: a case tfdem new writes has them")
@@ -55,7 +62,8 @@ class Pressure:
         self.samples = {t: [lower[t] - p] for t, p in
                         ((round(t, 9), p) for t, p in pressure_series(case.path, UPPER)) if t in lower}
         where = "the inlet (area average)" if self.lower == "inletPressure" else \
-            f"the bed's bottom row (y = {case.pressure_height(self.lower):.4g} m, cross-section average)"
+            f"the bed's bottom row (y = {case.pressure_height(self.lower):.4g} m, cross-section average" + \
+            (", above the distributor plate)" if _has_plate(case) else ")")
         self.label = f"dp (Pa) = p at {where} - p at y = {self.height:.4g} m (mean since the previous row)"
 
 
