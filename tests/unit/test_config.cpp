@@ -3,6 +3,7 @@
 
 #include <cfenv>
 #include <fstream>
+#include <map>
 
 #include "liggghts_engine.h"
 #include "tfdem/config.h"
@@ -368,6 +369,35 @@ TEST(Config, MissingFileIsNamed) {
   } catch (const ConfigError &e) {
     EXPECT_NE(std::string(e.what()).find("/nonexistent/coupling.yaml: cannot open"), std::string::npos);
   }
+}
+
+// The reference (docs/src/reference/coupling-yaml.md) is written from these records: every key
+// the parser reads carries a description and a type, the engines' keys their condition, and the
+// keys the docs once missed are among them with their defaults as config.cpp's readers set them
+TEST(Config, ReferenceDescribesEveryKey) {
+  const std::vector<KeyRecord> keys = coupling_reference();
+  std::map<std::string, const KeyRecord *> by_path;
+  for (const KeyRecord &k : keys) {
+    by_path[k.path] = &k;
+    if (k.kind == "a section") continue;
+    EXPECT_FALSE(k.doc.empty()) << k.path << " has no description";
+    EXPECT_FALSE(k.kind.empty()) << k.path << " has no type";
+  }
+  const std::map<std::string, std::string> defaults = {
+      {"coupling.drag_law", "ergun_wen_yu"},
+      {"coupling.pressure_gradient_force", "true"},
+      {"coupling.void_fraction_time_derivative", "true"},
+      {"coupling.void_fraction.cube_factor", "1"},
+      {"coupling.void_fraction.divided_points_per_diameter", "6"},
+      {"dem.hard_sphere.max_collisions_per_particle", "10000"},
+      {"dem.engine", "liggghts"}};
+  for (const auto &[path, fallback] : defaults) {
+    ASSERT_TRUE(by_path.count(path)) << path << " missing from the reference";
+    EXPECT_EQ(by_path[path]->fallback, fallback) << path;
+  }
+  EXPECT_EQ(by_path["dem.hard_sphere.restitution"]->condition, "dem.engine: hard_sphere");
+  EXPECT_EQ(by_path["dem.script"]->condition, "dem.engine: liggghts");
+  EXPECT_EQ(by_path["gas.density"]->unit, "kg/m^3");
 }
 
 }  // namespace
