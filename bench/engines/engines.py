@@ -26,8 +26,8 @@ from tfdem import STUDIES
 from tfdem.accuracy import scalar_metrics
 from tfdem.batch import CaseRun, run_batch
 from tfdem.bed import BedOutputs, l1_difference
-from tfdem.case import read_data_file
 from tfdem.engines import convert_to_hard_sphere
+from tfdem.liggghts import read_data_file
 from tfdem.run import run
 from tfdem.stats import ensemble
 

@@ -40,7 +40,8 @@ import shutil
 import sys
 import time
 
-from tfdem.case import Case, CaseError, number, read_data_file, set_dict_entries, sphere_volume, sub_dict
+from tfdem.case import Case, CaseError, number, set_dict_entries, sphere_volume, sub_dict
+from tfdem.liggghts import read_data_file
 from tfdem.outputs import OutputError, probes, solver_timing, vtk_particles
 from tfdem.physics import ergun_gradient
 from tfdem.run import RunError, run

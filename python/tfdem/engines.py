@@ -7,15 +7,8 @@ import os
 
 import yaml
 
-from tfdem.case import Case, read_data_file, sphere_volume
-from tfdem.errors import Reported
-
-CONTACT_PROPERTIES = ("kn", "kt", "gamman_abs", "gammat_abs", "coefficientFriction")
-
-
-class ScriptError(Reported):
-    """A DEM script or data file the hard-sphere laws cannot be derived from, named."""
-
+from tfdem.case import Case, sphere_volume
+from tfdem.liggghts import ScriptError, contact_properties, read_data_file, wall_type
 
 def restitution_of_damping(stiffness, damping, mass):
     """The restitution of a linear spring-dashpot contact, seed 001 eq. 27 solved for e_n
@@ -24,37 +17,6 @@ def restitution_of_damping(stiffness, damping, mass):
     damping (eta >= 2 sqrt(m k))."""
     discriminant = 4 * mass * stiffness - damping ** 2
     return math.exp(-math.pi * damping / math.sqrt(discriminant)) if discriminant > 0 else 0.0
-
-
-def contact_properties(script):
-    """A LIGGGHTS script's (a DemScript) `fix ... property/global <name> peratomtypepair n
-    <values>` for the linear spring-dashpot (CONTACT_PROPERTIES) as n x n matrices; refuses a
-    script without them (a Hertz or restitution-based contact) by name."""
-    tables = {}
-    for words in script.commands("fix"):
-        if len(words) > 6 and words[3] == "property/global" and words[5] == "peratomtypepair":
-            n = int(words[6])
-            numbers = [script.value(w) for w in words[7:]]
-            if len(numbers) != n * n:
-                raise ScriptError(f"{script.path}: property/global {words[4]} gives {len(numbers)} values for "
-                                  f"{n} x {n} types")
-            tables[words[4]] = [numbers[i * n:(i + 1) * n] for i in range(n)]
-    missing = [p for p in CONTACT_PROPERTIES if p not in tables]
-    if missing:
-        raise ScriptError(f"{script.path}: no property/global {', '.join(missing)} peratomtypepair: the hard-sphere "
-                          "laws are derived from a linear spring-dashpot with absolute damping (hooke/stiffness)")
-    return tables
-
-
-def wall_type(script, type_count):
-    """The atom type (1-based) of a LIGGGHTS script's walls: the `type` of its `fix ...
-    wall/gran` commands (one for all), else the last of the contact tables' type_count."""
-    found = {int(w[w.index("type") + 1]) for w in script.commands("fix")
-             if len(w) > 3 and w[2] == "wall/gran" and "type" in w[3:-1]}
-    if len(found) > 1:
-        raise ScriptError(f"{script.path}: its walls are of atom types {sorted(found)}: the hard-sphere laws take "
-                          "one wall law per particle type")
-    return found.pop() if found else type_count
 
 
 def hard_sphere_laws(script, masses):
@@ -85,24 +47,6 @@ def hard_sphere_laws(script, masses):
     pair = laws([(a, b, masses[a] * masses[b] / (masses[a] + masses[b])) for a in range(n) for b in range(n)])
     pair["wall"] = laws([(a, wall, masses[a]) for a in range(n)])
     return pair
-
-
-def write_data_file(path, lower, upper, diameters, densities, positions, velocities=None, types=None,
-                    type_count=None, title="TFDEM particles"):
-    """A LIGGGHTS data file (atom_style granular: id type diameter density x y z) of these
-    particles in the box lower..upper, with a Velocities section when velocities are given."""
-    n = len(positions)
-    types = types or [1] * n
-    lines = [title, "", f"{n} atoms", f"{type_count or max(types, default=1)} atom types", ""]
-    lines += [f"{lower[a]!r} {upper[a]!r} {'xyz'[a]}lo {'xyz'[a]}hi" for a in range(3)]
-    lines += ["", "Atoms # granular", ""]
-    lines += [f"{k + 1} {types[k]} {diameters[k]!r} {densities[k]!r} {x!r} {y!r} {z!r}"
-              for k, (x, y, z) in enumerate(positions)]
-    if velocities:
-        lines += ["", "Velocities", ""]
-        lines += [f"{k + 1} {vx!r} {vy!r} {vz!r} 0 0 0" for k, (vx, vy, vz) in enumerate(velocities)]
-    with open(path, "w") as f:
-        f.write("\n".join(lines) + "\n")
 
 
 def use_hard_sphere(case, particles, restitution, tangential_restitution, friction, wall=None, **options):

@@ -30,6 +30,19 @@ class InputError(Reported):
     """An input is wrong; the message is 'file: key: value: what is expected / the fix'."""
 
 
+class CaseError(InputError):
+    """A case file lacks what is asked of it; the message names the file and the entry."""
+
+
+def read_text(path, error=CaseError):
+    """A file's text; `error` naming the file and the reason when it cannot be read."""
+    try:
+        with open(path) as f:
+            return f.read()
+    except OSError as e:
+        raise error(f"{path}: cannot read ({e.strerror})") from None
+
+
 # Scalars the solver reads as numbers (yaml-cpp's as<double>: a decimal with an optional
 # exponent; as<long>: decimal digits), without a leading zero (017: octal or decimal?)
 INTEGER = re.compile(r"^[-+]?(?:0|[1-9][0-9]*)$")

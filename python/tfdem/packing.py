@@ -36,13 +36,13 @@ import re
 
 import numpy
 
-import tfdem.engines
 import tfdem.run
 from tfdem import TUTORIALS
-from tfdem.case import Case, CaseError, DemScript, read_data_file
+from tfdem.case import Case, CaseError
 from tfdem.contacts import contact_pairs
 from tfdem.frontdoor import add_debug_option, doing, replace_atomic, run_command, write_text_atomic
 from tfdem.inputs import Source, load_yaml, positive_count
+from tfdem.liggghts import DemScript, contact_properties, read_data_file
 
 POUR_SCRIPT = os.path.join(TUTORIALS, "poured_packing", "in.pour")
 PLANE_SLAB = 1.05  # depth of the slab a one-layer bed is poured into, in diameters
@@ -400,7 +400,7 @@ def pack_case(case, ranks=1, runner=None):
             "dem.hard_sphere.friction", friction, 0.0, what="the particles' friction coefficient (0 or more)")
         types = len(case.particle_diameters())
     else:
-        friction = tfdem.engines.contact_properties(case.dem())["coefficientFriction"][0][0]
+        friction = contact_properties(case.dem())["coefficientFriction"][0][0]
         types = script_type_count(case)
     settings = packing_settings(case)
     summary = pour(case, out=out, ranks=ranks, runner=runner, friction=float(friction), types=types, **settings)

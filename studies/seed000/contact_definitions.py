@@ -16,7 +16,8 @@ import os
 import numpy
 
 from tfdem import contacts
-from tfdem.case import Case, read_data_box
+from tfdem.case import Case
+from tfdem.liggghts import read_data_box
 from tfdem.outputs import vtk_particles
 from tfdem.stats import ensemble
 

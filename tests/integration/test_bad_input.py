@@ -17,7 +17,8 @@ import tempfile
 
 from tfdem import SOURCE_DIR, TUTORIALS, BUILD_DIR
 from tfdem.case import Case, remove_dict_entry
-from tfdem.engines import use_hard_sphere, write_data_file
+from tfdem.engines import use_hard_sphere
+from tfdem.liggghts import write_data_file
 from tfdem.run import write_decompose_dict, environment
 import probe
 

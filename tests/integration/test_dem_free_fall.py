@@ -10,7 +10,7 @@ so they cross ranks and their stored force must travel with them.
 import os
 
 from tfdem import SOURCE_DIR
-from tfdem.case import DemScript
+from tfdem.liggghts import DemScript
 from tfdem.outputs import dump_frames
 from tfdem_testlib import Checks, run, scratch
 

@@ -43,11 +43,12 @@ import signal
 import time
 
 from tfdem import SOURCE_DIR, TUTORIALS
-from tfdem.case import Case, read_data_file
-from tfdem.engines import convert_to_hard_sphere, use_hard_sphere, write_data_file
+from tfdem.case import Case
+from tfdem.engines import convert_to_hard_sphere, use_hard_sphere
 from tfdem.fixed_bed import VELOCITIES, FixedBed
-from tfdem.outputs import joined_series, particle_statistics, probes, vtk_particles
+from tfdem.liggghts import read_data_file, write_data_file
 from tfdem.newcase import derive, load_bed, write_case
+from tfdem.outputs import joined_series, particle_statistics, probes, vtk_particles
 from tfdem.packing import pack_case
 from tfdem.physics import SettlingSphere
 from tfdem.run import start

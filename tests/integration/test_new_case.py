@@ -30,11 +30,12 @@ import os
 
 import numpy
 
-import tfdem.packing
-from tfdem.packing import MAX_OVERLAP
-from tfdem.case import Case, read_data_file
+from tfdem.case import Case
+from tfdem.liggghts import read_data_file
 from tfdem.newcase import load_bed, derive, write_case
 from tfdem.outputs import pressure_series, vtk_particles
+import tfdem.packing
+from tfdem.packing import MAX_OVERLAP
 from tfdem.physics import ergun_gradient
 from tfdem_testlib import Checks, run, scratch
 

@@ -14,7 +14,8 @@ import os
 import subprocess
 
 from tfdem import SOURCE_DIR, TUTORIALS
-from tfdem.case import Case, read_data_box, read_data_file
+from tfdem.case import Case
+from tfdem.liggghts import read_data_box, read_data_file
 from tfdem.run import environment
 from tfdem_testlib import Checks, scratch
 

@@ -11,7 +11,7 @@ import shutil
 
 from tfdem import BUILD_DIR, TUTORIALS
 from tfdem.case import Case
-from tfdem.engines import write_data_file
+from tfdem.liggghts import write_data_file
 from tfdem.outputs import vtk_particles
 from tfdem.physics import SettlingSphere
 from tfdem_testlib import Checks, copy_case, run

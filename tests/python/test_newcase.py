@@ -22,9 +22,10 @@ import re
 import sys
 import tempfile
 
-from tfdem.case import Case, CaseError, DemScript
-from tfdem.newcase import BedError, derive, load_bed, main, write_case
 from tfdem.batch import end_time_change
+from tfdem.case import Case, CaseError
+from tfdem.liggghts import DemScript
+from tfdem.newcase import BedError, derive, load_bed, main, write_case
 from tfdem.packing import for_display, mixture, packing_settings
 
 failures = []

@@ -12,8 +12,9 @@ import numpy
 
 from tfdem.batch import CaseRun, eta_seconds, variants_command_line
 from tfdem.bubble import coloured_above, find_bubble
-from tfdem.case import Case, CaseError, DemScript, Grid, set_yaml_value
-from tfdem.engines import ScriptError, hard_sphere_laws, restitution_of_damping
+from tfdem.case import Case, CaseError, Grid, set_yaml_value
+from tfdem.engines import hard_sphere_laws, restitution_of_damping
+from tfdem.liggghts import DemScript, ScriptError
 from tfdem.outputs import OutputError, dump_frames, fix_print, joined_series
 from tfdem.packing import at_rest, jiggle, largest_overlap, packing_settings, script_stiffness, set_atom_types, to_mid_plane
 from tfdem.physics import slab_solid_fraction

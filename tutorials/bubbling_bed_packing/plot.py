@@ -12,7 +12,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.collections import EllipseCollection  # noqa: E402
 
-from tfdem.case import read_data_box, read_data_file  # noqa: E402
+from tfdem.liggghts import read_data_box, read_data_file  # noqa: E402
 from tfdem.physics import sphere_volume  # noqa: E402
 
 SHOWN_HEIGHT = 0.2  # m, the picture's height (the bed is about 15 cm)
