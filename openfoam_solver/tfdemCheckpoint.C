@@ -256,9 +256,8 @@ Foam::TfdemCheckpoint::TfdemCheckpoint(TfdemTime& runTime)
 }
 
 
-void Foam::TfdemCheckpoint::readStart(const wordList& marked)
+void Foam::TfdemCheckpoint::readMarker(const word& start)
 {
-    const word start = runTime_.timeName();
     const fileName marker = directory(start)/markerName;
     try
     {
@@ -289,16 +288,29 @@ void Foam::TfdemCheckpoint::readStart(const wordList& marked)
         " damaged)",
         "Resuming from it would run from a state it does not describe. " + fallback(start)
     );
+}
+
+
+bool Foam::TfdemCheckpoint::redecomposed() const
+{
     // A checkpoint written split over M ranks and resumed split over N != M: reconstructPar
     // and decomposePar replaced its processor*/ files by fields made from them, which its
     // hashes do not cover (a serial or whole run reads fields made from them beside them)
-    const bool redecomposed =
+    return
         layout_ == "split" && start_.layout == "split"
      && start_.ranks != TfdemRanks::count();
-    const auto verifiable = [redecomposed](const std::string& path)
-    {
-        return !redecomposed || path.compare(0, 9, "processor") != 0;
-    };
+}
+
+
+bool Foam::TfdemCheckpoint::verifiable(const std::string& path) const
+{
+    return !redecomposed() || path.compare(0, 9, "processor") != 0;
+}
+
+
+void Foam::TfdemCheckpoint::checkFilesUnchanged(const word& start) const
+{
+    const fileName marker = directory(start)/markerName;
     std::string problems;
     if (TfdemRanks::rank() == 0)
     {
@@ -322,6 +334,11 @@ void Foam::TfdemCheckpoint::readStart(const wordList& marked)
         Info<< "TFDEM warning: " << marker << " was written before checkpoints listed their"
             << " files: its files cannot be verified" << endl;
     }
+}
+
+
+void Foam::TfdemCheckpoint::checkResumedFields(const word& start) const
+{
     // The gas fields this run reads: its own layout's, listed by the marker or made from it
     std::string missing;
     std::string derived;
@@ -338,7 +355,7 @@ void Foam::TfdemCheckpoint::readStart(const wordList& marked)
         {
             listed = listed || runTime_.globalPath()/f.path == file;
         }
-        if ((!listed || redecomposed) && !start_.legacy()) derived = file;
+        if ((!listed || redecomposed()) && !start_.legacy()) derived = file;
     }
     const std::string missingAll = TfdemRanks::gatherText(missing);
     if (!missingAll.empty())
@@ -364,6 +381,11 @@ void Foam::TfdemCheckpoint::readStart(const wordList& marked)
             << " checkpoint's on " << start_.ranks << " rank(s) (not covered by its hashes)"
             << endl;
     }
+}
+
+
+void Foam::TfdemCheckpoint::refuseLaterCheckpoints(const word& start, const wordList& marked) const
+{
     DynamicList<word> later;
     for (const word& t : marked)
     {
@@ -378,6 +400,16 @@ void Foam::TfdemCheckpoint::readStart(const wordList& marked)
             << start << " s, or resume from the newest (startFrom latestTime)"
             << exit(FatalError);
     }
+}
+
+
+void Foam::TfdemCheckpoint::readStart(const wordList& marked)
+{
+    const word start = runTime_.timeName();
+    readMarker(start);
+    checkFilesUnchanged(start);
+    checkResumedFields(start);
+    refuseLaterCheckpoints(start, marked);
     if (start_.write_format == "ascii" && start_.write_precision < 17)
     {
         Info<< "TFDEM warning: the checkpoint's fields were written at writePrecision "
@@ -546,52 +578,37 @@ std::vector<std::string> Foam::TfdemCheckpoint::gasFiles
 }
 
 
-void Foam::TfdemCheckpoint::write
+bool Foam::TfdemCheckpoint::writeDemRestart
 (
     tfdem::ParticleEngine& dem,
-    const ParticleTotals& totals,
-    bool gasWritten
-)
+    const fileName& dir,
+    const std::string& stopped
+) const
 {
-    const word t = runTime_.timeName();
-    const fileName dir = directory(t);
-    const std::string stopped =
-        "The run stops before this checkpoint is marked complete; " + lastGoodText();
-    TfdemCase::written(runTime_, gasWritten, stopped);
-
-
-    std::string problems;
-    const std::vector<std::string> gas = gasFiles(t, problems);
-    stopIfAny
-    (
-        problems,
-        "the gas fields of t = " + t + " s were not written whole"
-      + TfdemCase::freeSpace(runTime_.globalPath()),
-        "A full disk, or a folder that cannot be written, cuts files short. " + stopped
-    );
-
     if (TfdemRanks::writesCase())
     {
         mkDir(dir);
     }
     MPI_Barrier(MPI_COMM_WORLD);
-    bool demRestart = false;
     try
     {
-        demRestart = dem.write_restart(dir/restartName);
+        return dem.write_restart(dir/restartName);
     }
     catch (const std::exception& e)
     {
         FatalErrorInFunction << e.what() << ". " << stopped.c_str() << exit(FatalError);
     }
+    return false;
+}
 
-    // Each rank's files with their digests, synced to disk
+
+std::string Foam::TfdemCheckpoint::fileDigests
+(
+    const std::vector<std::string>& listed,
+    std::string& problems
+) const
+{
     std::ostringstream mine;
-    std::vector<std::string> listed(gas);
-    if (TfdemRanks::writesCase() && demRestart)
-    {
-        listed.push_back(t + "/" + restartName);
-    }
     for (const std::string& path : listed)
     {
         const fileName file = runTime_.globalPath()/path;
@@ -610,50 +627,110 @@ void Foam::TfdemCheckpoint::write
         }
         if (!why.empty()) problems += "\n    " + why;
     }
-    stopIfAny(problems, "the checkpoint of t = " + t + " s could not be verified", stopped);
-    const std::string digests = TfdemRanks::gatherText(mine.str());
-    const std::vector<tfdem::OutputSize> outputs = dem.output_sizes();
+    return mine.str();
+}
 
+
+tfdem::CheckpointManifest Foam::TfdemCheckpoint::manifest
+(
+    tfdem::ParticleEngine& dem,
+    const ParticleTotals& totals,
+    bool demRestart,
+    const std::string& digests
+) const
+{
+    tfdem::CheckpointManifest m;
+    m.time = runTime_.value();
+    m.dem_restart = demRestart;
+    m.dem_step = dem.step();
+    m.engine = dem.key();
+    m.particles = totals.count;
+    m.particle_mass = totals.mass;
+    m.removed_particles = totals.removedCount;
+    m.removed_mass = totals.removedMass;
+    m.layout = layout_;
+    m.ranks = TfdemRanks::count();
+    m.write_format = runTime_.writeFormat() == IOstream::ASCII ? "ascii" : "binary";
+    m.write_precision = int(IOstream::defaultPrecision());
+    std::istringstream lines(digests);
+    std::string path, hash;
+    unsigned long long size;
+    while (lines >> path >> size >> hash)
+    {
+        m.files.push_back({path, {size, tfdem::from_hex(hash)}});
+    }
+    m.outputs = dem.output_sizes();
+    return m;
+}
+
+
+std::string Foam::TfdemCheckpoint::writeMarker
+(
+    const tfdem::CheckpointManifest& m,
+    const fileName& dir
+) const
+{
+    std::string problems;
+    const fileName partial(dir/(markerName + ".tmp"));
+    {
+        std::ofstream out(partial);
+        out << tfdem::format_manifest(m);
+        out.close();
+        if (!out) problems = "\n    " + partial + ": " + std::strerror(errno);
+    }
+    if (problems.empty()) problems = synced(partial);
+    if (problems.empty() && std::rename(partial.c_str(), (dir/markerName).c_str()) != 0)
+    {
+        problems = "cannot rename " + partial + ": " + std::strerror(errno);
+    }
+    if (problems.empty()) problems = synced(dir);
+    if (!problems.empty() && problems[0] != '\n') problems = "\n    " + problems;
+    return problems;
+}
+
+
+void Foam::TfdemCheckpoint::write
+(
+    tfdem::ParticleEngine& dem,
+    const ParticleTotals& totals,
+    bool gasWritten
+)
+{
+    const word t = runTime_.timeName();
+    const fileName dir = directory(t);
+    const std::string stopped =
+        "The run stops before this checkpoint is marked complete; " + lastGoodText();
+    TfdemCase::written(runTime_, gasWritten, stopped);
+
+    std::string problems;
+    const std::vector<std::string> gas = gasFiles(t, problems);
+    stopIfAny
+    (
+        problems,
+        "the gas fields of t = " + t + " s were not written whole"
+      + TfdemCase::freeSpace(runTime_.globalPath()),
+        "A full disk, or a folder that cannot be written, cuts files short. " + stopped
+    );
+    const bool demRestart = writeDemRestart(dem, dir, stopped);
+
+    // Each rank's files with their digests, synced to disk
+    std::vector<std::string> listed(gas);
+    if (TfdemRanks::writesCase() && demRestart)
+    {
+        listed.push_back(t + "/" + restartName);
+    }
+    const std::string mine = fileDigests(listed, problems);
+    stopIfAny(problems, "the checkpoint of t = " + t + " s could not be verified", stopped);
+    const tfdem::CheckpointManifest m =
+        manifest(dem, totals, demRestart, TfdemRanks::gatherText(mine));
     if (TfdemRanks::writesCase())
     {
-        tfdem::CheckpointManifest m;
-        m.time = runTime_.value();
-        m.dem_restart = demRestart;
-        m.dem_step = dem.step();
-        m.engine = dem.key();
-        m.particles = totals.count;
-        m.particle_mass = totals.mass;
-        m.removed_particles = totals.removedCount;
-        m.removed_mass = totals.removedMass;
-        m.layout = layout_;
-        m.ranks = TfdemRanks::count();
-        m.write_format = runTime_.writeFormat() == IOstream::ASCII ? "ascii" : "binary";
-        m.write_precision = int(IOstream::defaultPrecision());
-        std::istringstream lines(digests);
-        std::string path, hash;
-        unsigned long long size;
-        double bytes = 0;
-        while (lines >> path >> size >> hash)
+        problems = writeMarker(m, dir);
+        lastBytes_ = 0;
+        for (const auto& f : m.files)
         {
-            m.files.push_back({path, {size, tfdem::from_hex(hash)}});
-            bytes += size;
+            lastBytes_ += f.digest.size;
         }
-        m.outputs = outputs;
-        const fileName partial(dir/(markerName + ".tmp"));
-        {
-            std::ofstream out(partial);
-            out << tfdem::format_manifest(m);
-            out.close();
-            if (!out) problems = "\n    " + partial + ": " + std::strerror(errno);
-        }
-        if (problems.empty()) problems = synced(partial);
-        if (problems.empty() && std::rename(partial.c_str(), (dir/markerName).c_str()) != 0)
-        {
-            problems = "cannot rename " + partial + ": " + std::strerror(errno);
-        }
-        if (problems.empty()) problems = synced(dir);
-        if (!problems.empty() && problems[0] != '\n') problems = "\n    " + problems;
-        lastBytes_ = bytes;
     }
     stopIfAny
     (

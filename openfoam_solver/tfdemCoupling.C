@@ -96,6 +96,29 @@ Foam::TfdemCoupling::TfdemCoupling
     forceRecord_(forceRecordFile)
 {
     const fileName configFile(mesh.time().globalPath()/couplingFileName);
+    loadConfig(configFile);
+    MPI_Comm_dup(MPI_COMM_WORLD, &demComm_);
+    tfdemChecks::gasProperties(config_, rho, nu);
+    grid_ = discoverGrid(mesh);
+    tfdemChecks::twoDimensionalDepth(config_, grid_.grid);
+    startCore(configFile);
+    startDem(g.value());
+    tfdemChecks::particles(config_, *dem_);
+    tfdemChecks::packing(*dem_, g.value(), !checkpoint_.resuming());
+    checkEngine(gasVelocity, g.value());
+    startBookkeeping(configFile, g.value());
+
+    const tfdem::ParticleView view = particles();
+    mapGasFraction(view);
+    if (!checkpoint_.resuming())
+    {
+        computeForces(view);
+    }
+}
+
+
+void Foam::TfdemCoupling::loadConfig(const fileName& configFile)
+{
     try
     {
         config_ = tfdem::load_coupling_config(configFile);
@@ -106,12 +129,11 @@ Foam::TfdemCoupling::TfdemCoupling
             << "errors in " << configFile << ":\n" << e.what() << exit(FatalError);
     }
     Info<< tfdem::describe(config_).c_str() << endl;
+}
 
-    MPI_Comm_dup(MPI_COMM_WORLD, &demComm_);
 
-    tfdemChecks::gasProperties(config_, rho, nu);
-    grid_ = discoverGrid(mesh);
-    tfdemChecks::twoDimensionalDepth(config_, grid_.grid);
+void Foam::TfdemCoupling::startCore(const fileName& configFile)
+{
     try
     {
         core_.reset
@@ -145,37 +167,31 @@ Foam::TfdemCoupling::TfdemCoupling
             << block[1]*grid_.grid.spacing[1] << " x " << block[2]*grid_.grid.spacing[2]
             << " m), interpolated back to the gas cells" << endl;
     }
-    startDem(g.value());
-    tfdemChecks::particles(config_, *dem_);
-    tfdemChecks::packing(*dem_, g.value(), !checkpoint_.resuming());
-    checkEngine(gasVelocity, g.value());
+}
+
+
+void Foam::TfdemCoupling::startBookkeeping(const fileName& configFile, const vector& g)
+{
     outlets_.reset
     (
         new TfdemOutlets
         (
-            mesh, config_.outlets, configFile, *dem_, config_.particle_diameters.back()
+            mesh_, config_.outlets, configFile, *dem_, config_.particle_diameters.back()
         )
     );
     accounting_.reset
     (
-        new TfdemParticleAccounting(*dem_, checkpoint_.startTotals(), mesh.time().value())
+        new TfdemParticleAccounting(*dem_, checkpoint_.startTotals(), mesh_.time().value())
     );
     checkpoint_.verify(*dem_, accounting_->totals());
     statistics_.reset
     (
         new TfdemStatistics
         (
-            mesh, config_.output, config_.particle_diameters, grid_.grid,
-            grid_.gridCellOfCell, g.value()
+            mesh_, config_.output, config_.particle_diameters, grid_.grid,
+            grid_.gridCellOfCell, g
         )
     );
-
-    const tfdem::ParticleView view = particles();
-    mapGasFraction(view);
-    if (!checkpoint_.resuming())
-    {
-        computeForces(view);
-    }
 }
 
 

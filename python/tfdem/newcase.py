@@ -58,6 +58,7 @@ from tfdem import SOURCE_DIR, TUTORIALS
 from tfdem.engines import restitution_of_damping
 from tfdem.frontdoor import add_debug_option, default_mode, doing, run_command, write_file_synced
 from tfdem.inputs import InputError, Source, load_yaml, shown, suggestion
+from tfdem.liggghts import bed_script
 from tfdem.physics import wen_yu_minimum_fluidization
 
 ONE_LAYER = "one_layer"
@@ -455,10 +456,22 @@ def _closed_bottom(bed):
 
 def derive(bed, path="bed.yaml"):
     """Every value of the case, and a line per value saying what it is and why."""
-    box, p, inflow = bed["box"], bed["particles"], bed["inflow"]
-    d_small, d_large = p["sizes"][0]["diameter"], p["sizes"][-1]["diameter"]
     out = {"notes": []}
-    note = out["notes"].append
+    for part in (_derive_depth, _derive_cells, _derive_jets, _derive_contacts, _derive_steps, _derive_bed,
+                 _derive_inflow):
+        part(bed, out, out["notes"].append, path)
+    out["warnings"] = (_shallow_bed_warnings(bed, out) + _lifted_bed_warnings(bed, out)
+                       + _untested_warnings(bed, out))
+    return out
+
+
+def _largest_diameter(bed):
+    return bed["particles"]["sizes"][-1]["diameter"]
+
+
+def _derive_depth(bed, out, note, path):
+    """The bed's depth: one layer (seed 000's 2-D rule) or the box's."""
+    box, d_large = bed["box"], _largest_diameter(bed)
     if box["width"] < d_large:
         raise BedError(f"{path}: box.width: {box['width']:g} m is narrower than a particle ({d_large:g} m)")
     one_layer = box["depth"] == ONE_LAYER
@@ -470,6 +483,11 @@ def derive(bed, path="bed.yaml"):
     if one_layer:
         note(f"depth {depth:g} m: one diameter of the largest spheres (seed 000's 2-D rule), gas one cell deep")
 
+
+def _derive_cells(bed, out, note, path):
+    """The gas cells: square, a few diameters wide; one deep for one layer or a thin bed."""
+    box, d_large = bed["box"], _largest_diameter(bed)
+    one_layer, depth = out["one_layer"], out["depth"]
     cell = bed["mesh"]["cell_size"] or CELL_DIAMETERS * d_large
     nx = max(1, int(math.floor(box["width"] / cell + 1e-9)))
     dx = box["width"] / nx
@@ -489,9 +507,12 @@ def derive(bed, path="bed.yaml"):
     note(f"gas cells {dx:.4g} x {dy:.4g} x {depth / nz:.4g} m ({nx} x {ny} x {nz}): {dx / d_large:.3g} d wide ({why}); "
          f"{_cell_shape(box, dx, dy, depth, nz)}")
 
-    # jets on the cells' faces: a jet is a patch of whole faces
+
+def _derive_jets(bed, out, note, path):
+    """Each jet as a patch of whole cell faces of the bottom."""
+    dx = out["dx"]
     jets = []
-    for i, jet in enumerate(inflow["jets"]):
+    for i, jet in enumerate(bed["inflow"]["jets"]):
         lo, hi = jet["centre"] - jet["width"] / 2, jet["centre"] + jet["width"] / 2
         i0, i1 = lo / dx, hi / dx
         if abs(i0 - round(i0)) > 1e-6 or abs(i1 - round(i1)) > 1e-6 or round(i1) <= round(i0):
@@ -503,6 +524,11 @@ def derive(bed, path="bed.yaml"):
                      "velocity": jet["velocity"]})
     out["jets"] = jets
 
+
+def _derive_contacts(bed, out, note, path):
+    """U_mf and the contact stiffness of pairs and walls."""
+    p = bed["particles"]
+    d_small = p["sizes"][0]["diameter"]
     rho = p["density"]
     u_mf = wen_yu_minimum_fluidization(d_small, p["density"], bed["gas"]["density"], bed["gas"]["viscosity"], 9.81)
     out["u_mf"] = u_mf
@@ -517,7 +543,14 @@ def derive(bed, path="bed.yaml"):
         note(f"wall k_n {wall_stiffness:.4g} N/m: twice the pairs', the same overlap and t_c for a wall's m_ab = m")
     out["stiffness"], out["wall_stiffness"] = stiffness, wall_stiffness
 
-    scene = scene_numbers(bed, stiffness, wall_stiffness, dx, path)
+
+def _derive_steps(bed, out, note, path):
+    """The scene check's numbers, the gas step, the DEM step and the coupling interval."""
+    p, dy = bed["particles"], out["dy"]
+    stiffness, wall_stiffness = out["stiffness"], out["wall_stiffness"]
+    m_small = _mass(p["sizes"][0]["diameter"], p["density"])
+    hard = bed["dem"]["engine"] == "hard_sphere"
+    scene = scene_numbers(bed, stiffness, wall_stiffness, out["dx"], path)
     pair, wall = scene["pair"], scene["wall"]
     longest_dem_step = min(pair["recommended_time_step"], wall["recommended_time_step"])
     bound = min(GAS_STEP, INFLOW_COURANT * dy / _fastest_inflow(bed), 0.5 * scene["dense_drag_time"])
@@ -554,7 +587,13 @@ def derive(bed, path="bed.yaml"):
              f"{pair['recommended_time_step']:.4g} s with t_c = {pair['contact_time']:.4g} s (smallest pair, seed 000 "
              f"eq. 26), the scene check's rule for e_n = {p['restitution']:g}; walls t_c/{wall['contact_time'] / dt:.3g}")
 
-    # the bed
+    out["scene"] = scene
+
+
+def _derive_bed(bed, out, note, path):
+    """The bed's count, mass, packed height and weight per area; its floor and plate."""
+    box, p, inflow = bed["box"], bed["particles"], bed["inflow"]
+    rho, depth, dy, u_mf = p["density"], out["depth"], out["dy"], out["u_mf"]
     if "number" in p["sizes"][0]:
         numbers = [s["number"] for s in p["sizes"]]
         volumes = [n * math.pi * s["diameter"] ** 3 / 6 for n, s in zip(numbers, p["sizes"])]
@@ -590,7 +629,11 @@ def derive(bed, path="bed.yaml"):
         out["plate_darcy"] = fraction * weight_per_area / (bed["gas"]["viscosity"] * dy * u_mf)
         note(f"plate: Darcy d = {out['plate_darcy']:.4g} 1/m^2 over the cell row below it: {fraction:g} of the bed's "
              f"weight per area ({weight_per_area:.4g} Pa) at U_mf")
-    out["scene"] = scene
+
+
+def _derive_inflow(bed, out, note, path):
+    """The inflow against U_mf and the terminal velocity."""
+    inflow, u_mf, scene = bed["inflow"], out["u_mf"], out["scene"]
     u_ratio = _fastest_inflow(bed) / u_mf
     note(f"inflow {_fastest_inflow(bed):g} m/s = {u_ratio:.3g} U_mf (Wen-Yu, smallest spheres); terminal velocity "
          f"{scene['terminal_velocity']:.3g} m/s")
@@ -599,9 +642,6 @@ def derive(bed, path="bed.yaml"):
         note(f"mean superficial velocity over the whole bottom {out['mean_inflow']:.3g} m/s (the jets' flow and the "
              f"rest's over the width): {out['mean_inflow'] / u_mf:.3g} U_mf, "
              f"{out['mean_inflow'] / scene['terminal_velocity']:.2g} of the terminal velocity")
-    out["warnings"] = (_shallow_bed_warnings(bed, out) + _lifted_bed_warnings(bed, out)
-                       + _untested_warnings(bed, out))
-    return out
 
 
 SHALLOW_BED_CELLS = 3.0  # a packed bed fewer gas cells deep than this is one or two cells to the gas
@@ -653,7 +693,7 @@ def _lifted_bed_warnings(bed, dv):
 
 # The ranges the project's coupled tests and measured tutorials cover (tests/integration/
 # test_new_case.py, test_drivers_on_new_case.py, test_pressure_balance_3d.py, test_hard_sphere.py;
-# tutorials/your_own_bed, studies/seed000, tutorials/bidisperse_segregation): (low, high, unit, where)
+# tutorials/your_own_bed, studies/seed000, studies/bidisperse_segregation): (low, high, unit, where)
 TESTED_RANGES = {
     "particle diameter": (0.001, 0.0025, "m", "1 mm (your_own_bed) to 2.5 mm (seed 000's beds)"),
     "particles.density": (2500.0, 2700.0, "kg/m^3", "glass 2500 to 2700"),
@@ -892,128 +932,6 @@ functions
 """)
 
 
-def dem_script(bed, dv):
-    """in.bed: e_n, k_n and friction stated once as variables; every pair's damping from them."""
-    p, box = bed["particles"], bed["box"]
-    sizes = [s["diameter"] for s in p["sizes"]]
-    types = len(sizes) + 1
-    wall_type = types
-    kinds = {1: "Monodisperse", 2: "Bidisperse"}
-    spheres = {1: "1 the spheres", 2: "1 the small, 2 the large spheres"}
-    lines = [f"# {kinds.get(len(sizes), f'{len(sizes)}-size')} bed generated by tfdem new (edit freely: each value "
-             "is stated once, below, and the rest follows from it).",
-             f"# Atom types: {spheres.get(len(sizes), f'1 to {len(sizes)} the sizes, smallest first')}, "
-             f"{wall_type} the walls. Linear spring-dashpot contacts with absolute damping from e_n",
-             "# (seed 001 eq. 27) for each pair's reduced mass (seed 001 eq. 16; a wall: m_ab = m).",
-             f"variable        width equal {_g(box['width'])}",
-             f"variable        height equal {_g(box['height'])}",
-             f"variable        depth equal {_g(dv['depth'])}",
-             f"variable        floor equal {_g(dv['floor'])}" + (("   # the distributor plate" if bed["inflow"]["plate"]
-                                                                      else "   # above the windbox row") if dv["floor"] else ""),
-             f"variable        rho equal {_g(p['density'])}"]
-    for i, d in enumerate(sizes, 1):
-        lines.append(f"variable        d{i} equal {_g(d)}")
-        lines.append(f"variable        mass{i} equal v_rho*PI*v_d{i}^3/6")
-    lines += [f"variable        en equal {_g(p['restitution'])}          # e_n, particle pairs",
-              f"variable        en_wall equal {_g(p['wall']['restitution'])}     # e_n, particle-wall",
-              f"variable        mu equal {_g(p['friction'])}",
-              f"variable        mu_wall equal {_g(p['wall']['friction'])}",
-              f"variable        kn equal {dv['stiffness']:.6g}          # N/m" +
-              ("" if p["stiffness"] else f" (an impact at U_mf sinks {IMPACT_OVERLAP:.0%} of d)"),
-              "variable        kn_wall equal 2*v_kn   # the pairs' overlap and t_c for a wall's m_ab = m",
-              "variable        kt equal 2/7*v_kn",
-              "variable        kt_wall equal 2/7*v_kn_wall"]
-
-    def pair(i, j):
-        return f"v_mass{i}*v_mass{j}/(v_mass{i}+v_mass{j})" if j else f"v_mass{i}"
-
-    for i in range(1, len(sizes) + 1):
-        for j in list(range(i, len(sizes) + 1)) + [0]:
-            name = f"eta{i}{j}" if j else f"eta{i}w"
-            e, k = ("v_en", "v_kn") if j else ("v_en_wall", "v_kn_wall")
-            lines.append(f"variable        {name} equal -2*ln({e})*sqrt(({pair(i, j)})*{k})/sqrt(PI^2+ln({e})^2)")
-
-    def matrix(entry):
-        rows = []
-        for a in range(1, types + 1):
-            for b in range(1, types + 1):
-                rows.append(entry(min(a, b), max(a, b)))
-        return " ".join(rows)
-
-    def is_wall(a, b):  # a <= b: the wall type is the last
-        return b == wall_type
-
-    def eta(a, b):
-        if a == wall_type:
-            return f"${{eta{len(sizes)}w}}"
-        return f"${{eta{a}w}}" if is_wall(a, b) else f"${{eta{a}{b}}}"
-
-    kn = matrix(lambda a, b: "${kn_wall}" if is_wall(a, b) else "${kn}")
-    kt = matrix(lambda a, b: "${kt_wall}" if is_wall(a, b) else "${kt}")
-    damping = matrix(eta)
-    friction = matrix(lambda a, b: "${mu_wall}" if is_wall(a, b) else "${mu}")
-    walls = [("wall_x0", "xplane 0"), ("wall_x1", "xplane ${width}"), ("plate", "yplane ${floor}"),
-             ("lid", "yplane ${height}")]
-    if not dv["one_layer"]:
-        walls += [("wall_z0", "zplane 0"), ("wall_z1", "zplane ${depth}")]
-    lines += ["atom_style      granular",
-              "atom_modify     map array sort 0 0",
-              "boundary        f f f",
-              "newton          off",
-              "communicate     single vel yes",
-              "units           si",
-              # LIGGGHTS cuts across the bed only, never along gravity (y): cuts in y leave the
-              # upper ranks in the freeboard and one rank with the whole bed
-              "processors      " + ("* 1 1" if dv["one_layer"] else "* 1 *"),
-              "read_data       bed.data",
-              f"neighbor        {_g(0.2 * sizes[-1])} bin",
-              "neigh_modify    delay 0",
-              "",
-              f"fix             m1 all property/global kn peratomtypepair {types} {kn}",
-              f"fix             m2 all property/global kt peratomtypepair {types} {kt}",
-              f"fix             m3 all property/global gamman_abs peratomtypepair {types} {damping}",
-              f"fix             m4 all property/global gammat_abs peratomtypepair {types} {damping}",
-              f"fix             m5 all property/global coefficientFriction peratomtypepair {types} {friction}",
-              "pair_style      gran model hooke/stiffness tangential history absolute_damping on",
-              "pair_coeff      * *",
-              "# store_force: each wall's force on the particles (forces.txt below)"]
-    for name, plane in walls:
-        lines.append(f"fix             {name} all wall/gran model hooke/stiffness tangential history primitive "
-                     f"type {wall_type} {plane} store_force yes absolute_damping on")
-    lines += ["",
-              f"# The scene check's rule (tfdem-scene-check): t_c/{dv['scene']['pair']['steps_per_contact']:.3g} of the "
-              "smallest pair; the gas step (system/controlDict deltaT) is a whole number of these",
-              f"timestep        {dv['dem_step']!r}",
-              "fix             grav all gravity 9.81 vector 0 -1 0",
-              "fix             fluid all tfdem/coupling",
-              "fix             integr all nve/sphere",
-              "",
-              "compute         height all reduce ave y",
-              "thermo_style    custom step atoms ke c_height",
-              f"thermo          {max(1, int(round(0.1 / dv['dem_step'])))}",
-              "",
-              "# Mean particle height every 1 ms",
-              "variable        t equal step*dt",
-              "variable        h equal c_height",
-              f"fix             height_out all print {max(1, int(round(1e-3 / dv['dem_step'])))} \"${{t}} ${{h}}\" "
-              "file mean_height.txt screen no title \"# t (s)  mean particle height (m)\"",
-              "# Where the bed's weight goes: vertical force on all particles from the gas, the plate, the",
-              "# side walls (x), the lid" + ("" if dv["one_layer"] else " and the front and back walls (z)")
-              + ", averaged over 1 ms",
-              "compute         f_gas all reduce sum f_fluid[2]",
-              "compute         f_plate all reduce sum f_force_plate[2]",
-              "compute         f_side all reduce sum f_force_wall_x0[2] f_force_wall_x1[2]",
-              "compute         f_lid all reduce sum f_force_lid[2]"]
-    depth_walls = ""
-    if not dv["one_layer"]:
-        lines.append("compute         f_depth all reduce sum f_force_wall_z0[2] f_force_wall_z1[2]")
-        depth_walls = " c_f_depth[1] c_f_depth[2]"
-    every = max(1, int(round(1e-3 / dv["dem_step"])))
-    lines.append(f"fix             forces_out all ave/time 1 {every} {every} c_f_gas c_f_plate c_f_side[1] "
-                 f"c_f_side[2] c_f_lid{depth_walls} file forces.txt")
-    return "\n".join(lines) + "\n"
-
-
 def _dem_section(bed, dv):
     """coupling.yaml's dem: LIGGGHTS' script, or the hard-sphere engine and its collision laws."""
     if bed["dem"]["engine"] != "hard_sphere":
@@ -1176,7 +1094,8 @@ def case_files(bed, dv, source_text=None):
         + ("Warnings:\n" + "".join(f"  {w}\n" for w in dv["warnings"]) if dv["warnings"] else ""),
     }
     if bed["dem"]["engine"] != "hard_sphere":
-        files["in.bed"] = dem_script(bed, dv)
+        files["in.bed"] = bed_script(
+            bed, dv, "" if bed["particles"]["stiffness"] else f" (an impact at U_mf sinks {IMPACT_OVERLAP:.0%} of d)")
     for name, text in initial_fields(bed, dv).items():
         files[f"0/{name}"] = text
     if bed["inflow"]["plate"]:
