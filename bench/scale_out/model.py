@@ -41,8 +41,9 @@ import tempfile
 
 import numpy as np
 
-from tfdem import TUTORIALS, outputs
-from tfdem.case import Case, read_data_box, read_data_file
+from tfdem import STUDIES, TUTORIALS, outputs
+from tfdem.case import Case
+from tfdem.liggghts import read_data_box, read_data_file
 from tfdem.run import run
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -50,12 +51,13 @@ sys.path.insert(0, HERE)
 import memory  # noqa: E402  (the lattice bed of memory.py)
 
 # The bubbling bed's Allrun copies its packing from bubbling_bed_packing; the others keep theirs
-PACKINGS = {"bubbling_bed": os.path.join(TUTORIALS, "bubbling_bed_packing", "bed.data")}
-BEDS = {  # name: (tutorial, DEM processors grid)
-    "jet": ("jet_bed", "* 1 1"),
-    "bubbling": ("bubbling_bed", "* 1 1"),
-    "segregation": ("bidisperse_segregation", "* 1 1"),
-    "segregation_2d_grid": ("bidisperse_segregation", "* * 1"),
+SEGREGATION = os.path.join(STUDIES, "bidisperse_segregation")
+PACKINGS = {os.path.join(TUTORIALS, "bubbling_bed"): os.path.join(TUTORIALS, "bubbling_bed_packing", "bed.data")}
+BEDS = {  # name: (case folder, DEM processors grid)
+    "jet": (os.path.join(TUTORIALS, "jet_bed"), "* 1 1"),
+    "bubbling": (os.path.join(TUTORIALS, "bubbling_bed"), "* 1 1"),
+    "segregation": (SEGREGATION, "* 1 1"),
+    "segregation_2d_grid": (SEGREGATION, "* * 1"),
 }
 RANKS = (1, 2, 3, 4, 8)
 GAS_STEPS = 20
@@ -131,7 +133,7 @@ def set_processors(case, spec):
 
 
 def measure_run(name, tutorial, spec, ranks, where):
-    source = Case(os.path.join(TUTORIALS, tutorial))
+    source = Case(tutorial)
     data = os.path.basename(source.dem().read_data())
     packing = PACKINGS.get(tutorial, source.file(data))
     if not os.path.isfile(packing):
@@ -241,7 +243,7 @@ def predict(args):
     for name, (tutorial, spec) in BEDS.items():
         if not any(r["bed"] == name for r in rows):
             continue
-        case = Case(os.path.join(TUTORIALS, tutorial))
+        case = Case(tutorial)
         positions, lower, upper, cutoff = bed_geometry(case)
         costs = costs_of(rows, name)
         one = next(r for r in rows if r["bed"] == name and int(r["ranks"]) == 1)
@@ -259,7 +261,7 @@ def predict(args):
     costs = costs_of(rows, "segregation")
     one = next(r for r in rows if r["bed"] == "segregation" and int(r["ranks"]) == 1)
     dem_per_gas = float(one["dem_steps_per_gas_step"])
-    gas_dt = float(Case(os.path.join(TUTORIALS, "bidisperse_segregation")).control("deltaT"))
+    gas_dt = float(Case(SEGREGATION).control("deltaT"))
     variants = (("", "* * *", False), ("_columns", "* 1 *", False), ("_balanced", "* * *", True))
     for label, per_rank in (("lattice_1e6", None), ("weak_15625_per_rank", WEAK_PER_RANK)):
         for suffix, spec, balanced in variants:

@@ -390,13 +390,18 @@ def variants_command_line(doc, root, variants, make_run, report, default_end_tim
     from tfdem.packing import pour_case  # the pour needs the packing module only here
     parser = argparse.ArgumentParser(description=doc, formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = parser.add_subparsers(dest="action", required=True)
-    run_parser = sub.add_parser("run")
-    run_parser.add_argument("--end-time", type=positive_number("the simulated time in s"), default=default_end_time)
-    run_parser.add_argument("--jobs", type=positive_count("the runs side by side"), default=2)
-    run_parser.add_argument("--ranks", type=positive_count("each run's MPI ranks"), default=1)
-    run_parser.add_argument("--variants", nargs="+", choices=sorted(variants),
-                            default=list(default_variants or variants))
-    sub.add_parser("report")
+    chosen = list(default_variants or variants)
+    run_parser = sub.add_parser("run", help="run the variants (resumed from their checkpoints), then report",
+                                epilog="variants: " + ", ".join(sorted(variants)))
+    run_parser.add_argument("--end-time", type=positive_number("the simulated time in s"), default=default_end_time,
+                            help=f"simulated seconds (default {default_end_time:g})")
+    run_parser.add_argument("--jobs", type=positive_count("the runs side by side"), default=2,
+                            help="runs side by side (default 2)")
+    run_parser.add_argument("--ranks", type=positive_count("each run's MPI ranks"), default=1,
+                            help="MPI ranks of each run (default 1)")
+    run_parser.add_argument("--variants", nargs="+", choices=sorted(variants), default=chosen, metavar="NAME",
+                            help=f"the variants to run (default: {' '.join(chosen)}; the list below)")
+    sub.add_parser("report", help="s against t of every run there is: results/*.csv and the figure")
     args = parser.parse_args(argv)
     if args.action == "run":
         if not os.path.exists(os.path.join(root, "bed.data")):

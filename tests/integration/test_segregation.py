@@ -1,4 +1,4 @@
-"""Goldschmidt's bidisperse bed (tutorials/bidisperse_segregation), short: its own files with
+"""Goldschmidt's bidisperse bed (studies/bidisperse_segregation), short: its own files with
 a tenth of the particles (packing.yaml count / 10, a bed ~1.5 cm deep instead of ~15 cm) poured
 mixed, then 0.1 s under the polydisperse drag on 2 ranks through the tutorial's driver: first
 to 0.06 s, then carried on to 0.1 s from its 0.06 s checkpoint, as a long run is extended.
@@ -16,14 +16,14 @@ import math
 import os
 import sys
 
-from tfdem import TUTORIALS
+from tfdem import STUDIES
 from tfdem.batch import run_batch
 from tfdem.outputs import particle_statistics
 from tfdem.packing import packing_settings
 from tfdem.physics import sphere_volume
 from tfdem_testlib import Checks, poured_copy
 
-TUTORIAL = os.path.join(TUTORIALS, "bidisperse_segregation")
+TUTORIAL = os.path.join(STUDIES, "bidisperse_segregation")
 sys.path.insert(0, TUTORIAL)
 import segregation  # noqa: E402
 

@@ -1,4 +1,4 @@
-"""tutorials/bidisperse_segregation/ranks.py's comparison of N ranks with one rank on hand-made
+"""studies/bidisperse_segregation/ranks.py's comparison of N ranks with one rank on hand-made
 realizations, answers by hand:
 
 - Delta p 100, 102, 104 Pa on one rank and 101, 105, 103 on four: means 102 and 103, each
@@ -21,8 +21,9 @@ import sys
 
 import numpy
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tutorials",
-                                "bidisperse_segregation"))
+from tfdem import STUDIES
+
+sys.path.insert(0, os.path.join(STUDIES, "bidisperse_segregation"))
 import ranks  # noqa: E402
 
 failures = []

@@ -28,9 +28,10 @@ import sys
 
 from tfdem import outputs
 from tfdem.batch import VariantRun, clock, variants_command_line
-from tfdem.case import Case, read_data_box, read_data_file
-from tfdem.engines import HARD_SPHERE, convert_to_hard_sphere, with_hard_sphere, write_data_file
+from tfdem.case import Case
+from tfdem.engines import HARD_SPHERE, convert_to_hard_sphere, with_hard_sphere
 from tfdem.frontdoor import save_figure_atomic
+from tfdem.liggghts import read_data_box, read_data_file, write_data_file
 from tfdem.packing import jiggle, pour, pour_case
 from tfdem.stats import value_at
 
