@@ -44,9 +44,15 @@ Foam::scalar largestInflowSpeed(const Foam::volVectorField& U)
     Foam::scalar fastest = 0;
     forAll(U.boundaryField(), patchi)
     {
+        // The case's own patches only: every rank holds them in the same order (a split
+        // run's processor patches differ by rank, and the sums below are collective)
         const Foam::fvPatchVectorField& Ub = U.boundaryField()[patchi];
+        if (Ub.coupled() || !Ub.fixesValue())
+        {
+            continue;
+        }
         const Foam::scalar inflow = -Foam::gSum(Ub & U.mesh().Sf().boundaryField()[patchi]);
-        if (Ub.fixesValue() && inflow > 0)
+        if (inflow > 0)
         {
             fastest = Foam::max(fastest, Foam::gMax(Foam::mag(Ub)));
         }
