@@ -98,7 +98,8 @@ BED_KEYS = {
     "box": ("", "the column the bed stands in"),
     "box.width": ("m", "the column's width, x across"),
     "box.height": ("m", "the column's height, y up (gravity along -y); the lid at the top"),
-    "box.depth": ("m", "the column's depth, z; one_layer: one particle diameter (seed 000's 2-D rule)"),
+    "box.depth": ("m", "the column's depth, z; one_layer: one particle diameter (seed 000's 2-D rule); a 3-D bed "
+                  "several gas cells deep (e.g. 4 cells of 4 d: 16 d)"),
     "particles": ("", "the particles: one density, one to nine sizes, their contacts"),
     "particles.density": ("kg/m^3", "the particles' density, one for every size"),
     "particles.sizes": ("", "one to nine sizes, each with a diameter and a number, or a mass_fraction and the count"),
@@ -120,7 +121,8 @@ BED_KEYS = {
     "inflow.plate": ("", "a distributor plate below the bed (a porous zone)"),
     "inflow.plate.pressure_drop_fraction": ("", "the plate's pressure drop at U_mf, a fraction of the bed's weight "
                                                 "per area"),
-    "inflow.jets": ("", "jets through an otherwise closed bottom, each a centre, a width and a velocity"),
+    "inflow.jets": ("", "jets through an otherwise closed bottom, each a centre, a width and a velocity; a jet is a "
+                    "slot across the whole depth"),
     "inflow.jets[].centre": ("m", "the jet's centre, x"),
     "inflow.jets[].width": ("m", "the jet's width (its edges on the gas cells' faces)"),
     "inflow.jets[].velocity": ("m/s", "the jet's gas velocity"),
@@ -639,6 +641,10 @@ def _derive_inflow(bed, out, note, path):
          f"{scene['terminal_velocity']:.3g} m/s")
     out["mean_inflow"] = mean_inflow(bed)
     if inflow["jets"]:
+        across = " (each a slot over the whole depth)" if out["nz"] > 1 else ""
+        note(f"jets{across} " + ", ".join(f"{j['velocity']:g} m/s = {j['velocity'] / u_mf:.3g} U_mf" for j in inflow["jets"])
+             + "; the rest of the bottom " + (f"{inflow['velocity']:g} m/s = {inflow['velocity'] / u_mf:.3g} U_mf"
+                                              if inflow["velocity"] > 0 else "closed"))
         note(f"mean superficial velocity over the whole bottom {out['mean_inflow']:.3g} m/s (the jets' flow and the "
              f"rest's over the width): {out['mean_inflow'] / u_mf:.3g} U_mf, "
              f"{out['mean_inflow'] / scene['terminal_velocity']:.2g} of the terminal velocity")
@@ -1023,7 +1029,7 @@ ALLRUN = """#!/usr/bin/env bash
 # one a killed run left half-written is moved aside into incomplete/). Then tfdem summary
 # writes summary.csv and summary.png.
 # Stopped by Ctrl-C, `timeout` or a batch system's SIGTERM, the run writes a checkpoint and
-# exits 75: ./Allrun carries on from it, bit for bit as an unstopped run. To run longer, raise
+# exits 75: Allrun again carries on from it, bit for bit as an unstopped run. To run longer, raise
 # endTime in system/controlDict and ./Allrun again.
 # Usage: ./Allrun [MPI ranks, default 1]. On several ranks the gas is whole on each or split
 # (decomposePar, -parallel) as tfdem-gas-layout's measured rule has it for the mesh's cells;
@@ -1053,16 +1059,23 @@ fi
 [ -f log.tfdemFoam ] && mv log.tfdemFoam "log.tfdemFoam.$(date +%Y%m%d-%H%M%S)"
 # Ctrl-C or SIGTERM (timeout, a batch system, kill) is passed to tfdem-solve, which has the run
 # write a checkpoint and stop (the same signal sent to the whole group is passed on once); this
-# script waits for that and says so
-tfdem-solve log.tfdemFoam "$ranks" "${{args[@]}}" &
+# script names the signal, waits for the stop and says how to carry on
+TFDEM_STOP_NAMED=1 tfdem-solve log.tfdemFoam "$ranks" "${{args[@]}}" &
 solver=$!
-trap 'kill -TERM "$solver" 2>/dev/null' INT TERM
+named=
+stop() {{
+    [ -n "$named" ] || echo "$0: $1 received: the run writes a checkpoint at the next gas step and stops (again to stop at once)" >&2
+    named=1
+    kill -TERM "$solver" 2>/dev/null
+}}
+trap 'stop "Ctrl-C (SIGINT)"' INT
+trap 'stop SIGTERM' TERM
 while kill -0 "$solver" 2>/dev/null; do
     wait "$solver" || true  # a signal ends the wait early: wait on for the solver's end
 done
 status=0
 wait "$solver" || status=$?
-[ "$status" -eq 75 ] && echo "$0: stopped at a checkpoint; ./Allrun $ranks carries on from it"
+[ "$status" -eq 75 ] && echo "$0: stopped at a checkpoint; $0 $ranks carries on from it"
 "$TFDEM_PYTHON" -m tfdem.summary . || [ "$status" -ne 0 ] || status=$?
 exit "$status"
 """

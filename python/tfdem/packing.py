@@ -466,7 +466,9 @@ def _pack(argv):
                                      "the data file its DEM script reads; --verify checks a packed bed is the one "
                                      "tfdem pack finished (its stamp).")
     parser.add_argument("case", nargs="?", default=".")
-    parser.add_argument("--ranks", type=positive_count("the pour's MPI ranks (1 or more)"), default=1)
+    parser.add_argument("--ranks", type=positive_count("the pour's MPI ranks (1 or more)"), default=1,
+                        help="MPI ranks of the pour (LIGGGHTS; default 1); the bed poured is the same on any count "
+                             "to within the pour's randomness")
     parser.add_argument("--verify", action="store_true",
                         help="check the case's data file against the stamp tfdem pack wrote; pour nothing")
     add_debug_option(parser)

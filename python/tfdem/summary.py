@@ -16,8 +16,12 @@ the walls beside the bed, the lid). The header line names every column's unit.
 
 CASE/summary.png: Delta p and the mean particle height against time, and the particles at the
 last time a particle file was written (VTK/particles_<t>.vtk; before the first one, the bed
-the run started from), drawn to scale and coloured by diameter (a bed more than one layer deep
-is seen from the front, x against y).
+the run started from), drawn to scale and coloured by diameter: a bed up to 4 largest diameters deep seen from the
+front (x against y), a deeper one as a slice 2 largest diameters thick at mid-depth.
+
+A warning is printed when the bed is pinned under the lid: the lid carrying more than 5 % of
+its weight over the run's second half (LIGGGHTS), or more than 5 % of the particles less than
+half a diameter from it in the last particle file (hard spheres).
 
 The two paths are printed as the last lines.
 """
@@ -161,6 +165,54 @@ def last_particles(case):
     return time_of(path), vtk_particles(path)
 
 
+SLAB_DIAMETERS = 2.0  # a bed deeper than twice this is drawn as a mid-depth slice this many d thick
+
+
+def mid_depth_slab(particles, z_lo, z_hi):
+    """(positions, diameters, slab) of the particles to draw: in a bed deeper than 2 SLAB_DIAMETERS
+    largest diameters, those whose centres lie in a slice SLAB_DIAMETERS thick at mid-depth
+    (a projection of the whole depth hides jets, spouts and bubbles), slab = (mid-depth, thickness);
+    in a shallower bed all of them, slab = None."""
+    position = numpy.array(particles["position"], dtype=float).reshape(-1, 3)
+    d = numpy.array(particles["diameter"], dtype=float)
+    thickness = SLAB_DIAMETERS * (d.max() if len(d) else 0.0)
+    if not len(d) or z_hi - z_lo <= 2 * thickness:
+        return position, d, None
+    middle = 0.5 * (z_lo + z_hi)
+    inside = numpy.abs(position[:, 2] - middle) <= 0.5 * thickness
+    return position[inside], d[inside], (middle, thickness)
+
+
+LID_SHARE = 0.05  # the lid carrying more of the weight than this, on average, is a pinned bed
+
+
+def lid_warnings(case, header, rows):
+    """A bed pressed against the lid is not fluidized: a warning with the lid's mean share of the
+    weight over the run's second half (LIGGGHTS' forces.txt, in summary.csv), or, without it,
+    the share of the particles touching the lid in the last particle file."""
+    column = next((i for i, h in enumerate(header) if h.startswith(FORCES[3])), None)
+    fix = ("a taller box (box.height) or a slower inflow (inflow.velocity, the jets' velocity): a packed bed started at "
+           "the full inflow first rises as a plug, which can reach a lid close above it")
+    if column is not None:
+        t_end = rows[-1][0]
+        late = [abs(r[column]) for r in rows if r[0] >= 0.5 * t_end and not math.isnan(r[column])]
+        share = sum(late) / len(late) if late else 0.0
+        if share > LID_SHARE:
+            return [f"the lid carries {share:.2f} of the bed's weight on average over t = {0.5 * t_end:g} to "
+                    f"{t_end:g} s (summary.csv, its lid column): particles are pinned under the lid and the bed is "
+                    f"not fluidized as meant. Fix: {fix}"]
+        return []
+    _, particles = last_particles(case)
+    _, hi = case.mesh_bounds()
+    position = numpy.array(particles["position"], dtype=float).reshape(-1, 3)
+    d = numpy.array(particles["diameter"], dtype=float)
+    touching = int(numpy.count_nonzero(position[:, 1] + d >= hi[1])) if len(d) else 0  # gaps under d/2
+    if len(d) and touching > LID_SHARE * len(d):
+        return [f"{touching} of the {len(d)} particles ({touching / len(d):.0%}) are less than half a diameter from the lid in "
+                f"the last particle file: the bed is pinned under the lid, not fluidized as meant. Fix: {fix}"]
+    return []
+
+
 def plot(case, header, rows, path):
     import matplotlib
 
@@ -181,9 +233,10 @@ def plot(case, header, rows, path):
     axes[1].set_xlabel("t (s)")
     axes[1].set_ylabel("mean particle height (cm)")
     snapshot_time, particles = last_particles(case)
-    xy = numpy.array([(x, y) for x, y, _ in particles["position"]])
-    d = numpy.array(particles["diameter"])
-    front = numpy.argsort([-z for _, _, z in particles["position"]])  # the front (small z) drawn last
+    lo, hi = case.mesh_bounds()
+    position, d, slab = mid_depth_slab(particles, lo[2], hi[2])
+    xy = position[:, :2]
+    front = numpy.argsort(-position[:, 2])  # the front (small z) drawn last
     sizes = sorted(set(numpy.round(d, 12)))
     colour = numpy.searchsorted(sizes, numpy.round(d, 12)) / max(1, len(sizes) - 1)
     circles = EllipseCollection(d[front], d[front], numpy.zeros(len(d)), units="xy", offsets=xy[front],
@@ -191,13 +244,13 @@ def plot(case, header, rows, path):
     circles.set_array(colour[front])
     circles.set_clim(0, 1)
     axes[2].add_collection(circles)
-    lo, hi = case.mesh_bounds()
     axes[2].set_xlim(lo[0], hi[0])
     axes[2].set_ylim(lo[1], hi[1])
     axes[2].set_aspect("equal")
     axes[2].set_xlabel("x (m)")
     when = f"t = {snapshot_time:g} s" if snapshot_time is not None else "the bed the run started from"
-    axes[2].set_title(f"particles at {when}\n" + ", ".join(f"{1000 * s:g}" for s in sizes[:9]) + " mm"
+    seen = f"mid-depth slice {1000 * slab[1]:.3g} mm thick" if slab else "seen from the front"
+    axes[2].set_title(f"particles at {when}\n{seen}\n" + ", ".join(f"{1000 * s:g}" for s in sizes[:9]) + " mm"
                       + (" (dark to light)" if len(sizes) > 1 else ""), fontsize=7)
     fig.tight_layout()
     save_figure_atomic(fig, path, dpi=110)
@@ -205,17 +258,18 @@ def plot(case, header, rows, path):
 
 
 def summarize(case_path):
-    """Write CASE/summary.csv and CASE/summary.png; returns their paths."""
+    """Write CASE/summary.csv and CASE/summary.png; returns their paths, the rows and the warnings."""
     case = Case(case_path)
     with doing("reading the run's outputs in", case.path):
         header, rows = table(case)
+        warnings = lid_warnings(case, header, rows)
     csv = case.file(TABLE)
     with doing("writing", csv):
         write_text_atomic(csv, csv_text(header, rows))
     figure = case.file(FIGURE)
     with doing("plotting", figure):
         plot(case, header, rows, figure)
-    return csv, figure, rows
+    return csv, figure, rows, warnings
 
 
 def main(argv=None):
@@ -230,8 +284,10 @@ def _summary(argv):
     args = parser.parse_args(argv)
     if not os.path.isfile(os.path.join(args.case, "coupling.yaml")):
         raise CaseError(f"{args.case}: not a case folder (no coupling.yaml): give the folder of a case that has run")
-    csv, figure, rows = summarize(args.case)
+    csv, figure, rows, warnings = summarize(args.case)
     print(f"tfdem summary: {len(rows)} samples, t = {rows[0][0]:g} to {rows[-1][0]:g} s")
+    for warning in warnings:
+        print(f"tfdem summary: warning: {warning}")
     print(csv)
     print(figure)
     return 0

@@ -4,7 +4,9 @@ runs it, stopped and resumed with nothing but Allrun:
 1. Straight: `Allrun 2` to the end (0.1 s, writes every 0.05 s): exit 0, summary.csv and
    summary.png named in its last lines.
 2. Stopped as Ctrl-C does (SIGINT to Allrun's process group) once past 0.02 s: the run writes a
-   checkpoint where its ranks agree and Allrun exits 75, saying how to carry on. Then a time
+   checkpoint where its ranks agree and Allrun exits 75, saying how to carry on (by the path
+   it was run as); the terminal names the signal sent once (not the SIGTERM and SIGUSR1
+   passed on inside) and the time the run stopped at. Then a time
    folder written after that checkpoint and never completed (as a run killed while writing
    leaves, 1 ms after it) is planted; `Allrun 2` again moves it aside into incomplete/ (kept, not deleted),
    carries on from the checkpoint and ends at 0.1 s with the straight run's write times and
@@ -94,7 +96,8 @@ def same_state(checks, label, straight, case):
                     os.path.isfile(b) and open(a, "rb").read() == open(b, "rb").read())
 
 
-def stopped_and_resumed(checks, template, straight, label, prefix, expected_code, stop_after=None):
+def stopped_and_resumed(checks, template, straight, label, prefix, expected_code, named, stop_after=None):
+    others = [s for s in ("SIGINT", "SIGTERM", "SIGUSR1") if s not in named]
     case = generated(f"allrun_{label}", template=template)
     code, output = allrun(case, prefix, stop_after=stop_after)
     stop = re.search(r"stopped at t = (\S+) s", open(os.path.join(case, "log.tfdemFoam")).read())
@@ -102,7 +105,12 @@ def stopped_and_resumed(checks, template, straight, label, prefix, expected_code
                 and os.path.isfile(os.path.join(case, stop.group(1), "tfdem.checkpoint")), f"(exit {code})\n{output[-800:]}")
     if not stop:
         return
-    checks.true(f"{label}: Allrun says how to carry on", "carries on from it" in output, output[-400:])
+    allrun_path = os.path.join(case, "Allrun")
+    checks.true(f"{label}: Allrun says how to carry on, by the path it was run as",
+                f"{allrun_path} {RANKS} carries on from it" in output, output[-400:])
+    checks.true(f"{label}: the terminal names the signal sent ({named}) once and no other, and where the run stopped",
+                output.count(f"{named} received") == 1 and all(other not in output for other in others)
+                and f"stopped at t = {stop.group(1)} s, its fields and checkpoint written" in output, output[-1200:])
     planted_name = f"{float(stop.group(1)) + 0.001:g}"  # after the checkpoint, as a killed run leaves
     planted = os.path.join(case, planted_name)
     os.makedirs(planted)
@@ -131,13 +139,14 @@ def main():
                 any("summary.csv" in line for line in last) and any("summary.png" in line for line in last)
                 and all(os.path.isfile(os.path.join(straight, f)) for f in ("summary.csv", "summary.png")), str(last))
     checks.true("straight: wrote 0.05 and 0.1 s", written(straight) == [0.05, 0.1], f"({written(straight)})")
-    stopped_and_resumed(checks, template, straight, "Ctrl-C", (), 75, stop_after=0.02)
+    stopped_and_resumed(checks, template, straight, "Ctrl-C", (), 75, "Ctrl-C (SIGINT)", stop_after=0.02)
     # the time limit falls half-way between the straight run's 0.02 s and 0.08 s, so that a
     # loaded machine still stops the solver mid-run
     checks.true("straight: the solver's progress seen at 0.02 s and 0.08 s", None not in clock.values(), str(clock))
     if None not in clock.values():
         limit = 0.5 * (clock[0.02] + clock[0.08])
-        stopped_and_resumed(checks, template, straight, "timeout", ("timeout", "-s", "TERM", f"{limit:.1f}"), 124)
+        stopped_and_resumed(checks, template, straight, "timeout", ("timeout", "-s", "TERM", f"{limit:.1f}"), 124,
+                            "SIGTERM")
 
     broken = generated("allrun_broken", template=template)
     Case(broken).set_coupling("coupling.drag_law", "ergun_wenyu")

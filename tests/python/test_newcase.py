@@ -217,6 +217,14 @@ def check_jets(root):
     note = next((n for n in dv["notes"] if n.startswith("mean superficial velocity")), "")
     check("one jet: the mean over the bottom, 2.22 m/s = 2.0 U_mf", "2.22 m/s" in note and ": 2 U_mf" in note, note)
     check("one jet: no warning", not dv["warnings"], str(dv["warnings"]))
+    jets = next((n for n in dv["notes"] if n.startswith("jets")), "")
+    check("one jet: its velocity 20 m/s = 18 U_mf (20 / 1.1126 = 17.98) and the rest of the bottom closed",
+          "20 m/s = 18 U_mf" in jets and "the rest of the bottom closed" in jets, jets)
+    fed = write(root, "jet_fed.yaml", JETS.replace("inflow: {jets:", "inflow: {velocity: 1.0, jets:")
+                % "{centre: 0.036, width: 0.008, velocity: 20}")
+    jets = next((n for n in derive(load_bed(fed), fed)["notes"] if n.startswith("jets")), "")
+    check("a jet over a bottom fed at 1 m/s: the rest 1 m/s = 0.899 U_mf (1 / 1.1126)",
+          "the rest of the bottom 1 m/s = 0.899 U_mf" in jets, jets)
     five = write(root, "five_jets.yaml", JETS % ", ".join(
         f"{{centre: {0.004 + 0.016 * k:.3f}, width: 0.008, velocity: 30}}" for k in range(5)))
     dv = derive(load_bed(five), five)

@@ -19,7 +19,9 @@ by hand:
 - a resumed run (restarted from 0.05 s after running on to 0.06 s): 10 rows, the first run's
   rows past 0.05 s superseded (their Delta p 1000 Pa off, their gas force 1 W off).
 - the snapshot: the last particle file (0.1 s; 0.05 s written too), or before any, the bed
-  the run started from.
+  the run started from; a 3-D bed drawn as a mid-depth slice 2 d thick.
+- the lid warning: none when the lid carries nothing; the lid's share over the run's second
+  half, or the particles at the lid for hard spheres, by hand in check_lid_warnings.
 """
 import contextlib
 import io
@@ -131,6 +133,7 @@ def check_case(root, name, depth, diameters, engine, resumed, particle_files):
         shares = [r[first:] for r in rows]
         check(f"{name}: gas 0.9, floor 0.05, walls {walls}, lid 0 of the weight ({weight:.6g} N)",
               all(close(a, b, 1e-7) for s in shares for a, b in zip(s, (0.9, 0.05, walls, 0.0))), f"({shares[-1]})")
+    check(f"{name}: no lid warning (the lid carries nothing)", "warning" not in out, out)
     check(f"{name}: the picture written", os.path.getsize(png) > 1000)
     snapshot, particles = summary.last_particles(case)
     check(f"{name}: the snapshot is the last particle file, else the starting bed",
@@ -148,11 +151,54 @@ def check_refusals(root):
     check("... and nothing written", not os.path.exists(case.file("summary.csv")))
 
 
+def check_mid_depth_slab():
+    """2 mm spheres: a box 40 mm deep is drawn as the slice 4 mm thick about z = 20 mm (centres
+    within 2 mm of it), a box 6 mm deep (3 d, under 2 x 2 d) whole."""
+    z = [0.005, 0.0185, 0.0199, 0.0215, 0.0205, 0.0225, 0.035]
+    particles = {"position": [(0.01, 0.02, v) for v in z], "diameter": [0.002] * len(z)}
+    position, d, slab = summary.mid_depth_slab(particles, 0.0, 0.04)
+    check("3-D: the mid-depth slice 4 mm thick holds the centres within 2 mm of z = 20 mm",
+          slab == (0.02, 0.004) and sorted(position[:, 2]) == [0.0185, 0.0199, 0.0205, 0.0215] and len(d) == 4,
+          f"({slab}, {sorted(position[:, 2])})")
+    position, d, slab = summary.mid_depth_slab(particles, 0.0, 0.006)
+    check("a bed 3 d deep: every particle, no slice", slab is None and len(d) == len(z), f"({slab})")
+
+
+def check_lid_warnings(root):
+    """The lid's share over the run's second half: rows at 0.01 ... 0.1 s with the lid carrying
+    -0.04 of the weight to 0.05 s and -0.2 after: the half from 0.05 s holds 0.05 s (-0.04)
+    and 0.06 ... 0.1 s (-0.2), a mean |share| of (0.04 + 5 x 0.2) / 6 = 0.17333; with -0.06
+    after 0.05 s, (0.04 + 5 x 0.06) / 6 = 0.0567 > 0.05, and -0.05 gives 0.04833: none.
+    Hard spheres (no lid column): 3 of 40 particles of 2 mm with their centres 1 mm under the
+    lid at y = 0.16 m warn (7.5 %), 2 of 40 (5 %) do not."""
+    case, _, _ = make_case(root, "lid", bed_yaml(0.04, [0.002]))
+    header = ["t (s)", "dp", "mean particle height (m)", summary.FORCES[3] + " (mean since the previous row)"]
+    for late, expected in ((0.2, 0.17333), (0.06, 0.0567), (0.05, None)):
+        rows = [[0.01 * k, 0.0, 0.0, -0.04 if k <= 5 else -late] for k in range(1, 11)]
+        warnings = summary.lid_warnings(case, header, rows)
+        if expected is None:
+            check(f"the lid carrying 0.048 of the weight: no warning", warnings == [], str(warnings))
+        else:
+            check(f"the lid carrying {expected:.3g} of the weight over 0.05-0.1 s: a warning with the share and the fix",
+                  len(warnings) == 1 and f"carries {expected:.2f} of the bed's weight" in warnings[0]
+                  and "t = 0.05 to 0.1 s" in warnings[0] and "box.height" in warnings[0], str(warnings))
+    hard, _, _ = make_case(root, "lid_hard_spheres", bed_yaml(0.04, [0.002], "hard_sphere"))
+    for at_lid, warned in ((3, True), (2, False)):
+        particles = [(k, 0.002, (0.002 + 0.0009 * k, 0.159 if k < at_lid else 0.02, 0.02)) for k in range(40)]
+        write_vtk_particles(hard.file("VTK", "particles_0.1.vtk"), 0.1, particles)
+        warnings = summary.lid_warnings(hard, ["t (s)", "dp", "mean particle height (m)"], [[0.1, 0.0, 0.0]])
+        check(f"hard spheres, {at_lid} of 40 at the lid: {'a warning' if warned else 'none'}",
+              (len(warnings) == 1 and f"{at_lid} of the 40 particles" in warnings[0]) if warned else warnings == [],
+              str(warnings))
+
+
 def main():
+    check_mid_depth_slab()
     with tempfile.TemporaryDirectory() as root:
         for name, settings in CASES.items():
             check_case(root, name, *settings)
         check_refusals(root)
+        check_lid_warnings(root)
     if failures:
         print(f"{len(failures)} check(s) failed: {', '.join(failures)}")
         sys.exit(1)
