@@ -55,7 +55,15 @@ def mean(values):
     return sum(values) / len(values)
 
 
-HELPERS = {"json": load_json, "column": column, "mean": mean, "min": min, "max": max, "abs": abs, "len": len}
+def stdev(values):
+    """The sample standard deviation (n - 1)."""
+    values = list(values)
+    m = mean(values)
+    return (sum((v - m) ** 2 for v in values) / (len(values) - 1)) ** 0.5
+
+
+HELPERS = {"json": load_json, "column": column, "mean": mean, "stdev": stdev, "min": min, "max": max, "abs": abs,
+           "len": len}
 
 
 def markers(pages=PAGES):
@@ -76,7 +84,8 @@ def registry():
 
 def expected(entry):
     """The number an entry gives, printed by its format."""
-    value = eval(entry["value"], {"__builtins__": {}}, HELPERS)  # the registry is committed code
+    # the registry is committed code; the helpers as globals, so that a comprehension sees them
+    value = eval(entry["value"], {"__builtins__": {}, **HELPERS})
     return entry.get("format", "{:g}").format(value)
 
 
