@@ -93,6 +93,10 @@ def prepare(case_path):
     if newest is not None:
         case.set_control(startFrom="latestTime")
         lines.append(f"resuming from the checkpoint at t = {newest} s")
+        end = case.end_time()
+        if float(newest) >= end * (1 - 1e-12):
+            lines.append(f"the run has reached its end time ({end:g} s): nothing is left to run; raise endTime in "
+                         f"{case.file('system', 'controlDict')} to run longer")
     else:
         case.set_control(startFrom="startTime")
         lines.append("no checkpoint: starting at the start time")

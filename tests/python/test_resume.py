@@ -1,6 +1,7 @@
 """tfdem resume on hand-made cases: time folders after the newest checkpoint marker are moved
 aside whole into CASE/incomplete/ (processor*/ ones too), never deleted; controlDict's
-startFrom becomes latestTime when a checkpoint is left, startTime otherwise; a gas-only case
+startFrom becomes latestTime when a checkpoint is left, startTime otherwise; a run whose newest
+checkpoint is at the end time is said to be finished; a gas-only case
 (no coupling.yaml) and a folder that is no case are refused with exit 2."""
 import os
 import re
@@ -76,8 +77,15 @@ with tempfile.TemporaryDirectory() as tmp:
           os.path.isdir(os.path.join(root, "incomplete", "0.05")) and os.path.isdir(os.path.join(root, "0")))
 
     root = case(os.path.join(tmp, "c"), ["0.1"], [])
-    prepare(root)
+    lines = prepare(root)
     check("nothing incomplete: no incomplete/ folder", not os.path.exists(os.path.join(root, "incomplete")))
+    check("a checkpoint before the end time (1 s): no word of the end", not any("end time" in l for l in lines),
+          str(lines))
+
+    root = case(os.path.join(tmp, "f"), ["0.5", "1"], [])
+    lines = prepare(root)
+    check("a finished run (its checkpoint at the end time, 1 s): said so, with endTime to raise",
+          any("reached its end time (1 s)" in l and "raise endTime" in l for l in lines), str(lines))
 
     gas_only = case(os.path.join(tmp, "d"), [], ["0.1"])
     os.remove(os.path.join(gas_only, "coupling.yaml"))
