@@ -50,6 +50,14 @@ def column(relative, name, since=None, until=None, time="t"):
     return [float(r[name]) for r in kept]
 
 
+def series(relative, since=None, until=None):
+    """The second column of a CSV of (t, value) rows under '#' comment lines (no row of names),
+    its rows with t within [since, until] when given."""
+    with open(path_of(relative)) as f:
+        rows = [line.split(",") for line in f if line.strip() and not line.startswith("#")]
+    return [float(v) for t, v in rows if (since is None or float(t) >= since) and (until is None or float(t) <= until)]
+
+
 def mean(values):
     values = list(values)
     return sum(values) / len(values)
@@ -62,7 +70,7 @@ def stdev(values):
     return (sum((v - m) ** 2 for v in values) / (len(values) - 1)) ** 0.5
 
 
-HELPERS = {"json": load_json, "column": column, "mean": mean, "stdev": stdev, "min": min, "max": max, "abs": abs,
+HELPERS = {"json": load_json, "column": column, "series": series, "mean": mean, "stdev": stdev, "min": min, "max": max, "abs": abs,
            "len": len}
 
 

@@ -180,8 +180,8 @@ def report(root=HERE):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, (whole, reached_axes) = plt.subplots(1, 2, figsize=(9, 3.5))
-    reached_end = 0.0
+    fig, (whole, reached_axes) = plt.subplots(1, 2, figsize=(9, 4.3))
+    reached_end, highest = 0.0, 1.0
     dashes = {"polydisperse": "-", "standard": "--", "beetstra_own": ":", "ergun_polydisperse": "-."}
     realizations = {law: [] for law in LAWS}
     for name in VARIANTS:
@@ -205,6 +205,7 @@ def report(root=HERE):
         for ax in (whole, reached_axes):
             ax.plot(t, s, colour + dashes[law], lw=1, label=f"TFDEM, {law} drag, {engine}, {start}")
         reached_end = max(reached_end, t[-1])
+        highest = max(highest, max(s))
     for law, series in realizations.items():
         if not series:
             continue
@@ -223,15 +224,16 @@ def report(root=HERE):
     print(f"seed 001 at 60 s: polydisperse {SEED_AT_60_S['polydisperse']}, experiment {SEED_AT_60_S['experiment']},"
           " standard drag almost fully segregated")
     whole.set_xlim(0, 62)
-    whole.set_ylim(-0.1, 1.05)
+    whole.set_ylim(-0.1, max(1.05, highest + 0.05))
     whole.set_title("Fig. 11's span", fontsize=9)
-    whole.legend(fontsize=6)
+    handles, labels = whole.get_legend_handles_labels()
+    fig.legend(handles, labels, loc="lower center", ncol=2, fontsize=7, frameon=False)
     reached_axes.set_xlim(0, max(reached_end, 0.1))
     reached_axes.set_title("the span reached", fontsize=9)
     for ax in (whole, reached_axes):
         ax.set_xlabel("t (s)")
     whole.set_ylabel("degree of segregation s (seed 001 eq. 49)")
-    fig.tight_layout()
+    fig.tight_layout(rect=(0, 0.2, 1, 1))  # the legend below both panels, clear of the curves
     save_figure_atomic(fig, os.path.join(root, "segregation.png"), dpi=120)
     print("wrote segregation.png")
 
