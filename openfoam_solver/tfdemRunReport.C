@@ -101,6 +101,16 @@ void Foam::TfdemRunReport::couplingStep
             std::sqrt(m[0]*m[0] + m[1]*m[1] + m[2]*m[2])/totals.drag_magnitude_sum
         );
     }
+    const auto& f = totals.pressure_force_imbalance;
+    if (totals.pressure_force_magnitude_sum > 0)
+    {
+        maxPressureForceImbalance_ = std::max
+        (
+            maxPressureForceImbalance_,
+            std::sqrt(f[0]*f[0] + f[1]*f[1] + f[2]*f[2])
+           /totals.pressure_force_magnitude_sum
+        );
+    }
 }
 
 
@@ -251,7 +261,8 @@ void Foam::TfdemRunReport::report
         << maxVolumeMismatch_ << " over " << volumeCheckedSteps_
         << " steps without floor; max |momentum imbalance|"
         << " / sum |drag| = " << maxMomentumImbalance_ << " (" << transferMethod << ")"
-        << endl;
+        << "; max |pressure force imbalance| / sum V_p |grad p| = "
+        << maxPressureForceImbalance_ << endl;
     if (dragImpulseMagnitude_ > 0)
     {
         Info<< "TFDEM momentum exchange: drag impulse the gas received " << gasImpulse_

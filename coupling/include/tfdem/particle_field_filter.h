@@ -27,9 +27,10 @@
 //
 // Per axis F = P H R (R: block sums, H: the heat kernel on the blocks, P: the interpolation),
 // every column summing to 1 and every entry >= 0: sums over cells are kept to round-off, and no
-// value becomes negative. The gas velocity the particles see goes through the adjoint F^T
-// (the heat kernel is symmetric; the block part is not), so the power the particles take,
-// sum_i f_i . u_i, is the power the gas gives. Entries below 1e-18 of their row's largest are
+// value becomes negative. The gas fields the particles see (velocity, pressure gradient) go
+// through the adjoint F^T (the heat kernel is symmetric; the block part is not), so the power
+// the particles take, sum_i f_i . u_i, is the power the gas gives, and their pressure-gradient
+// force the reaction of the filtered solids in the gas. Entries below 1e-18 of their row's largest are
 // skipped (a band of about +-5 b about each cell). An axis of one cell (the 2-D rule's depth)
 // is neither blocked nor spread. Cost per field component: n_x + n_y + n_z multiply-adds per
 // cell at most (the band's widths).

@@ -1,6 +1,7 @@
 #include "tfdem/distributed_coupling.h"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -204,13 +205,21 @@ void DistributedCoupling::forces(const ParticleView &particles, const double *ga
   }
   sauter_diameter_.resize(owned);
   sauter_diameters(owned_sums_, owned, sauter_diameter_.data());
-  const double *seen_velocity = gas_velocity;  // the gas velocity the particles' drag takes
+  // The gas fields the particles see: under the filter through its adjoint, as the map's
+  // weights carry them to the particles, so that what the gas loses to the filtered solids
+  // the particles receive (the filter spreads extensive sums, its adjoint samples fields)
+  const double *seen_velocity = gas_velocity, *seen_gradient = pressure_gradient;
   if (filter_) {
     seen_velocity_.assign(gas_velocity, gas_velocity + 3 * owned);
     filter_owned(seen_velocity_, 3, true);
     seen_velocity = seen_velocity_.data();
+    if (pressure_gradient) {
+      seen_gradient_.assign(pressure_gradient, pressure_gradient + 3 * owned);
+      filter_owned(seen_gradient_, 3, true);
+      seen_gradient = seen_gradient_.data();
+    }
   }
-  pack_owned_state(seen_velocity, pressure_gradient);
+  pack_owned_state(seen_velocity, seen_gradient);
   exchange_.fetch_from_owners(owned_state_, kStateComponents, halo_state_);
 
   unpack_halo_state();
@@ -238,12 +247,30 @@ void DistributedCoupling::forces(const ParticleView &particles, const double *ga
   const std::array<double, 3> sink = adds_cell_totals()
                                          ? gas_drag_sink(owned_gas, exchange_coefficient_.data(), solid_velocity_.data())
                                          : std::array<double, 3>{};
-  double balance[4];
+  double balance[8];
   for (int a = 0; a < 3; ++a) balance[a] = result_.momentum_imbalance[a] - sink[a];
   balance[3] = result_.drag_magnitude_sum;
-  sum_over_ranks(balance, 4);
+  pressure_force_balance(particles, gradient_at, pressure_gradient, &balance[4]);
+  sum_over_ranks(balance, 8);
   for (int a = 0; a < 3; ++a) totals_.momentum_imbalance[a] = balance[a];
   totals_.drag_magnitude_sum = balance[3];
+  for (int a = 0; a < 3; ++a) totals_.pressure_force_imbalance[a] = balance[4 + a];
+  totals_.pressure_force_magnitude_sum = balance[7];
+}
+
+void DistributedCoupling::pressure_force_balance(const ParticleView &particles, const std::vector<double> &gradient_at,
+                                                 const double *pressure_gradient, double *out) const {
+  std::fill(out, out + 4, 0.0);
+  if (!pressure_gradient) return;
+  const int axes = void_fraction_.two_dimensional ? 2 : 3;  // the thin direction's forces are dropped
+  for (std::size_t i = 0; i < particles.count; ++i) {
+    const double volume = sphere_volume(particles.diameter[i]);
+    for (int a = 0; a < axes; ++a) out[a] += volume * gradient_at[3 * i + a];
+    out[3] += volume * std::sqrt(gradient_at[3 * i] * gradient_at[3 * i] + gradient_at[3 * i + 1] * gradient_at[3 * i + 1] +
+                                 gradient_at[3 * i + 2] * gradient_at[3 * i + 2]);
+  }
+  for (std::size_t c = 0; c < owned_volume_.size(); ++c)
+    for (int a = 0; a < axes; ++a) out[a] -= gas_.solid_volume[c] * pressure_gradient[3 * c + a];
 }
 
 }  // namespace tfdem

@@ -56,6 +56,12 @@ struct CouplingTotals {
   double mapped_volume = 0.0;        // sum_c (1 - eps_c) V_c
   std::array<double, 3> momentum_imbalance{};  // sum_i eps_g f_d,i - sum_c V_c K_c (u_c - U_s,c)
   double drag_magnitude_sum = 0.0;   // sum_i |eps_g f_d,i|
+  // sum_i V_i grad p(x_i) - sum_c (1 - eps_c) V_c grad p_c: the particles' pressure-gradient
+  // force against its reaction in the gas (the solids volume of the map, filtered when the
+  // filter is on, times the cells' grad p); 0 to round-off when grad p reaches the particles
+  // through the map's and the filter's adjoints
+  std::array<double, 3> pressure_force_imbalance{};
+  double pressure_force_magnitude_sum = 0.0;  // sum_i V_i |grad p(x_i)|
 };
 
 class DistributedCoupling {
@@ -120,7 +126,10 @@ class DistributedCoupling {
   VoidFractionOptions void_fraction_;
   TransferOptions transfer_;
   std::optional<ParticleFieldFilter> filter_;  // with a diffusion bandwidth or a particle-field block
-  std::vector<double> grid_sums_, filter_scratch_, seen_velocity_;
+  std::vector<double> grid_sums_, filter_scratch_, seen_velocity_, seen_gradient_;
+  // sum_i V_i grad p(x_i), sum_c (1 - eps_c) V_c grad p_c subtracted (3), sum_i V_i |grad p(x_i)|
+  void pressure_force_balance(const ParticleView &particles, const std::vector<double> &gradient_at,
+                              const double *pressure_gradient, double *out) const;
 
   CellWeights weights_;
   std::vector<int> scratch_, halo_cells_;
