@@ -186,10 +186,11 @@ def mid_depth_slab(particles, z_lo, z_hi):
 LID_SHARE = 0.05  # the lid carrying more of the weight than this, on average, is a pinned bed
 
 
-def lid_warnings(case, header, rows):
+def lid_warnings(case, header, rows, snapshot=None):
     """A bed pressed against the lid is not fluidized: a warning with the lid's mean share of the
     weight over the run's second half (LIGGGHTS' forces.txt, in summary.csv), or, without it,
-    the share of the particles touching the lid in the last particle file."""
+    the share of the particles touching the lid in the last particle file (`snapshot`, as
+    last_particles gives it; read when not given)."""
     column = next((i for i, h in enumerate(header) if h.startswith(FORCES[3])), None)
     fix = ("a taller box (box.height) or a slower inflow (inflow.velocity, the jets' velocity): a packed bed started at "
            "the full inflow first rises as a plug, which can reach a lid close above it")
@@ -202,7 +203,7 @@ def lid_warnings(case, header, rows):
                     f"{t_end:g} s (summary.csv, its lid column): particles are pinned under the lid and the bed is "
                     f"not fluidized as meant. Fix: {fix}"]
         return []
-    _, particles = last_particles(case)
+    _, particles = snapshot or last_particles(case)
     _, hi = case.mesh_bounds()
     position = numpy.array(particles["position"], dtype=float).reshape(-1, 3)
     d = numpy.array(particles["diameter"], dtype=float)
@@ -213,7 +214,7 @@ def lid_warnings(case, header, rows):
     return []
 
 
-def plot(case, header, rows, path):
+def plot(case, header, rows, path, snapshot):
     import matplotlib
 
     matplotlib.use("Agg")
@@ -232,7 +233,7 @@ def plot(case, header, rows, path):
     axes[1].plot(t, [100 * r[2] for r in rows], lw=0.8)
     axes[1].set_xlabel("t (s)")
     axes[1].set_ylabel("mean particle height (cm)")
-    snapshot_time, particles = last_particles(case)
+    snapshot_time, particles = snapshot
     lo, hi = case.mesh_bounds()
     position, d, slab = mid_depth_slab(particles, lo[2], hi[2])
     xy = position[:, :2]
@@ -262,13 +263,14 @@ def summarize(case_path):
     case = Case(case_path)
     with doing("reading the run's outputs in", case.path):
         header, rows = table(case)
-        warnings = lid_warnings(case, header, rows)
+        snapshot = last_particles(case)
+        warnings = lid_warnings(case, header, rows, snapshot)
     csv = case.file(TABLE)
     with doing("writing", csv):
         write_text_atomic(csv, csv_text(header, rows))
     figure = case.file(FIGURE)
     with doing("plotting", figure):
-        plot(case, header, rows, figure)
+        plot(case, header, rows, figure, snapshot)
     return csv, figure, rows, warnings
 
 

@@ -266,8 +266,7 @@ void DistributedCoupling::pressure_force_balance(const ParticleView &particles, 
   for (std::size_t i = 0; i < particles.count; ++i) {
     const double volume = sphere_volume(particles.diameter[i]);
     for (int a = 0; a < axes; ++a) out[a] += volume * gradient_at[3 * i + a];
-    out[3] += volume * std::sqrt(gradient_at[3 * i] * gradient_at[3 * i] + gradient_at[3 * i + 1] * gradient_at[3 * i + 1] +
-                                 gradient_at[3 * i + 2] * gradient_at[3 * i + 2]);
+    out[3] += volume * std::hypot(gradient_at[3 * i], gradient_at[3 * i + 1], gradient_at[3 * i + 2]);
   }
   for (std::size_t c = 0; c < owned_volume_.size(); ++c)
     for (int a = 0; a < axes; ++a) out[a] -= gas_.solid_volume[c] * pressure_gradient[3 * c + a];
