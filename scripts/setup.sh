@@ -3,7 +3,7 @@
 #   1. Debian packages (OpenFOAM, LIGGGHTS, Open MPI, yaml-cpp, GoogleTest, plotting);
 #   2. OpenFOAM v1912 headers from Debian's own openfoam source package (Debian ships none),
 #      unpacked to .cache/ with lnInclude folders for the libraries we include;
-#   3. one CMake build of coupling/, engines/ and openfoam_solver/ into build/.
+#   3. one CMake build of coupling/, engines/, openfoam_solver/ and tfm_models/ into build/.
 # Each step is skipped when its result is already there; with --if-built the build too when
 # one exists (the CMake build otherwise rebuilds what changed).
 set -euo pipefail
@@ -16,7 +16,14 @@ OPENFOAM_SRC="$CACHE/openfoam-src"
 APT_PACKAGES=(openfoam libopenfoam liggghts libliggghts-dev libopenmpi-dev openmpi-bin
               libyaml-cpp-dev libgtest-dev googletest cmake g++ make dpkg-dev bzip2 xz-utils
               python3 python3-matplotlib python3-yaml mkdocs)
-OPENFOAM_LNINCLUDE_DIRS=(OpenFOAM OSspecific/POSIX finiteVolume meshTools)
+# lnInclude folders: the libraries tfdemFoam includes, and for tfm_models/ twoPhaseEulerFoam's
+# own libraries and the ones their headers include
+TWO_PHASE_EULER=applications/solvers/multiphase/twoPhaseEulerFoam
+OPENFOAM_LNINCLUDE_DIRS=(src/OpenFOAM src/OSspecific/POSIX src/finiteVolume src/meshTools
+    src/TurbulenceModels/turbulenceModels src/TurbulenceModels/compressible src/TurbulenceModels/phaseCompressible
+    src/transportModels/compressible src/transportModels/incompressible src/thermophysicalModels/basic
+    src/thermophysicalModels/specie "$TWO_PHASE_EULER/twoPhaseSystem" "$TWO_PHASE_EULER/interfacialModels"
+    "$TWO_PHASE_EULER/phaseCompressibleTurbulenceModels")
 
 log() { printf '[tfdem setup] %s\n' "$*"; }
 die() { printf '[tfdem setup] error: %s\n' "$*" >&2; exit 1; }
@@ -65,7 +72,7 @@ enable_deb_src() {
 }
 
 fetch_openfoam_headers() {
-    local stamp="$OPENFOAM_SRC/.lninclude-done" tarball dir
+    local stamp="$OPENFOAM_SRC/.lninclude-twophase-done" tarball dir
     [ -f "$stamp" ] && { log "OpenFOAM $OPENFOAM_VERSION headers: present"; return; }
     enable_deb_src
     mkdir -p "$CACHE/download"
@@ -76,13 +83,13 @@ fetch_openfoam_headers() {
         tarball=$(ls "$CACHE"/download/openfoam_${OPENFOAM_VERSION}*.orig.tar.* 2>/dev/null | head -n1 || true)
         [ -n "$tarball" ] || die "apt-get source openfoam gave no openfoam_${OPENFOAM_VERSION}*.orig.tar.*"
     fi
-    log "unpacking $(basename "$tarball") (src/ and wmake/ only)"
+    log "unpacking $(basename "$tarball") (src/, wmake/ and twoPhaseEulerFoam's sources only)"
     rm -rf "$OPENFOAM_SRC.partial" && mkdir -p "$OPENFOAM_SRC.partial"
-    tar -xf "$tarball" -C "$OPENFOAM_SRC.partial" --strip-components=1 --wildcards '*/src/*' '*/wmake/*'
+    tar -xf "$tarball" -C "$OPENFOAM_SRC.partial" --strip-components=1 --wildcards '*/src/*' '*/wmake/*' "*/$TWO_PHASE_EULER/*"
     for dir in "${OPENFOAM_LNINCLUDE_DIRS[@]}"; do
         (cd "$OPENFOAM_SRC.partial" && WM_PROJECT_DIR="$OPENFOAM_SRC.partial" \
-            ./wmake/wmakeLnInclude -s "src/$dir" >/dev/null) \
-            || die "wmakeLnInclude failed for src/$dir"
+            ./wmake/wmakeLnInclude -s "$dir" >/dev/null) \
+            || die "wmakeLnInclude failed for $dir"
     done
     rm -rf "$OPENFOAM_SRC" && mv "$OPENFOAM_SRC.partial" "$OPENFOAM_SRC"
     touch "$stamp"
