@@ -8,6 +8,7 @@ study.py report writes the table into report/README.md and between the markers o
 study's README.md (markers(), replace_block), so the README's table is the report's; the
 replicates' tables go into it the same way.
 """
+import math
 import numpy
 
 from replicates import MAP_DEPTH, pm, signed
@@ -96,10 +97,14 @@ class Headline:
         return f"{signed(d['mean'], d['error'], scale)}{' ' + unit if unit else ''} ({d['mean'] / d['error']:+.1f} SE)"
 
     def against(self, value, reference, scale=1.0, unit=""):
-        """value - reference (a number without error) and its size in value's errors."""
+        """value - reference and its size in standard errors: a reference number (the paper's) is
+        exact; a reference with its own error (an ensemble's {mean, error}) adds it in
+        quadrature."""
         if not value:
             return "-"
-        d = {"mean": value["mean"] - reference, "error": value["error"]}
+        reference_error = reference["error"] if isinstance(reference, dict) else 0.0
+        reference_mean = reference["mean"] if isinstance(reference, dict) else reference
+        d = {"mean": value["mean"] - reference_mean, "error": math.hypot(value["error"], reference_error)}
         return self.signed_diff(d, scale, unit)
 
     def map_comparison(self, pair):
@@ -176,7 +181,7 @@ class Headline:
                                                          unit="Pa")),
             ("jet: Δp at 20 cm, TFM", "similar mean, smaller fluctuating amplitude",
              f"kinetic theory {self.dp_single('jet_tfm')}; phase pressure {self.dp_single('jet_tfm_phase_pressure')}",
-             "; ".join(f"{label} − TF-DEM {self.against(self.single(run, 'dp20'), jet_m1_dp['mean'], unit='Pa')}, "
+             "; ".join(f"{label} − TF-DEM {self.against(self.single(run, 'dp20'), jet_m1_dp, unit='Pa')}, "
                        f"std {self.single(run, 'dp20')['std'] / jet_std['mean']:.2g}× TF-DEM's"
                        for label, run in (("kinetic theory", "jet_tfm"), ("phase pressure", "jet_tfm_phase_pressure"))
                        if self.single(run, "dp20") and jet_m1_dp)),
@@ -215,7 +220,7 @@ class Headline:
             ("uniform: mean particle height, TFM", f"{P['mean_height_tfm']} cm",
              f"kinetic theory {self.one_run('uniform_tfm', 'mean_height', 100, 'cm')}; phase pressure "
              f"{self.one_run('uniform_tfm_phase_pressure', 'mean_height', 100, 'cm')}",
-             "; ".join(f"{label} − TF-DEM {self.against(self.single(run, 'mean_height'), self.ens('uniform_m1', 'mean_height')['mean'], 100, 'cm')}"
+             "; ".join(f"{label} − TF-DEM {self.against(self.single(run, 'mean_height'), self.ens('uniform_m1', 'mean_height'), 100, 'cm')}"
                        for label, run in (("kinetic theory", "uniform_tfm"), ("phase pressure", "uniform_tfm_phase_pressure"))
                        if self.single(run, "mean_height") and self.ens("uniform_m1", "mean_height"))),
             ("uniform: Δp at 20 cm", "-",
