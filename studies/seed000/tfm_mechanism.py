@@ -1,0 +1,448 @@
+#!/usr/bin/env python3
+"""Why the kinetic-theory TFM peer of the uniform-inflow bed stays laterally uniform (issue 52):
+the template `tfm_bubbling_bed` run with one change at a time, each change one term of the
+model, and OpenFOAM's own kinetic-theory `fluidisedBed` tutorial (which bubbles) beside it, as
+shipped and with seed 000's restitution; the same measures read from every run.
+
+    tfm_mechanism.py run [--variants NAME ...] [--end-time T] [--jobs 2]
+    tfm_mechanism.py report
+    tfm_mechanism.py measure
+
+`run` copies the variant's template to runs/tfm_mechanism/<variant>, makes its one change
+(VARIANTS below), writes the fields every WRITE_INTERVAL, runs Allprepare and Allsolve to the
+end time (END_TIME or DEFAULT_END_TIME unless given), and keeps the run's measures in
+results/tfm_mechanism/<variant>.csv (one row per write). `report` reads those files and writes
+results/tfm_mechanism.md (tfm_README.md quotes it); `measure` reads the measures again from the
+runs as they stand, then reports.
+
+Measures at each write, over the bed's rows of cells (those whose initial mean solids fraction
+is at least half the densest row's):
+  lateral std   the standard deviation of alpha_s across a row, averaged over the rows
+                (the walls' steady profile counts in it)
+  departure     the same of alpha_s less its cell's mean over the run's second half: 0 for
+                a steady profile and for horizontal layers moving as one (1-D waves and
+                slugs), large for 2-D bubbles
+  min alpha_s   the least solids fraction of those rows' cells (a void has alpha_s < 0.1)
+  bed Theta     the granular temperature, alpha_s-weighted over those rows (m^2/s^2)
+and from the solver's function objects where the case has them (seed 000's): the pressure
+drop over the 20 cm above the bottom cell centre, and the whole bed's (the inlet's p less the
+outlet's and the gas column's) as a fraction of the solids' weight per area. The report averages each over the second half of the run.
+"""
+import argparse
+import concurrent.futures
+import csv
+import glob
+import math
+import os
+import random
+import re
+import shutil
+import subprocess
+import sys
+import tarfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "..", "python"))
+from tfdem.outputs import field, times  # noqa: E402
+
+TEMPLATE = os.path.join(HERE, "tfm_bubbling_bed")
+CACHE = os.environ.get("TFDEM_CACHE", os.path.join(HERE, "..", "..", ".cache"))
+# OpenFOAM's own kinetic-theory bed (300 um, e 0.8, 5 mm cells), which bubbles: taken from the
+# OpenFOAM source tarball that scripts/setup.sh downloads (Debian ships no tutorials)
+FLUIDISED_BED = "tutorials/multiphase/twoPhaseEulerFoam/RAS/fluidisedBed"
+RUNS = os.path.join(HERE, "runs", "tfm_mechanism")
+RESULTS = os.path.join(HERE, "results", "tfm_mechanism")
+KINETIC = "constant/turbulenceProperties.particles"
+PHASES = "constant/phaseProperties"
+WRITE_INTERVAL = {"seed000": 0.1, "fluidised_bed": 0.02}  # s, per template
+# Jenkins & Zhang (2002): the effective restitution of rough spheres, e - 3/2 mu exp(-3 mu),
+# for Table 1's e = 0.97 and the DEM's friction mu = 0.1
+E_EFFECTIVE = 0.97 - 1.5 * 0.1 * math.exp(-3 * 0.1)
+# The conservative granular pressure force, -grad P_s (tfm_models/kineticTheoryConservative.H)
+KINETIC_THEORY_LIBRARY = os.path.join(os.environ.get("TFDEM_BUILD", os.path.join(HERE, "..", "..", "build")),
+                                      "tfm_models", "libtfdemKineticTheory.so")
+CONSERVATIVE = [(KINETIC, r"RASModel\s+kineticTheory;", "RASModel        kineticTheoryConservative;"),
+                (KINETIC, r"kineticTheoryCoeffs", "kineticTheoryConservativeCoeffs"),
+                ("system/controlDict", r"\napplication\s", f'\nlibs            ("{os.path.abspath(KINETIC_THEORY_LIBRARY)}");\napplication ')]
+PERTURBATION = 0.02  # relative, uniform per cell, of the packed bed's alpha_s
+# A bed of bubbles: the rows' lateral std of alpha_s's departure from its cell's time mean
+# above this (1-D waves and slugs, and a steady lateral profile, give 0)
+BUBBLING = 0.02
+
+# name: (what changes, [(file, pattern, replacement[, matches])]); patterns are regular
+# expressions that must match exactly once in the template (or `matches` times)
+SEED000_VARIANTS = {
+    "template": ("nothing: e 0.97, Gidaspow viscosity and conductivity, Lun pressure, "
+                 "Carnahan-Starling g0, friction from 0.58, Theta fixed at the inlet, zero gradient at the walls", []),
+    "pressure_conservative": ("the solids pressure force as -grad P_s (MFIX's form), not -p' grad alpha_s: "
+                              "adds -(P_s/Theta) grad Theta (tfm_models/kineticTheoryConservative)", CONSERVATIVE),
+    "restitution_0.859": (f"e = {E_EFFECTIVE:.3f}, Jenkins & Zhang's effective e of Table 1's e and mu",
+                          [(KINETIC, r"(\n\s*e\s+)0\.97;", rf"\g<1>{E_EFFECTIVE:.4f};")]),
+    "restitution_0.8": ("e = 0.8, OpenFOAM's fluidisedBed tutorial's value (a diagnosis)",
+                        [(KINETIC, r"(\n\s*e\s+)0\.97;", r"\g<1>0.8;")]),
+    "restitution_0.5": ("e = 0.5 (a diagnosis)", [(KINETIC, r"(\n\s*e\s+)0\.97;", r"\g<1>0.5;")]),
+    "no_viscosity": ("solids shear viscosity off (viscosityModel none)",
+                     [(KINETIC, r"viscosityModel\s+Gidaspow;", "viscosityModel          none;")]),
+    "pressure_syamlal": ("granular pressure of Syamlal, Rogers & O'Brien (no kinetic alpha rho Theta term)",
+                         [(KINETIC, r"granularPressureModel\s+Lun;", "granularPressureModel   SyamlalRogersOBrien;")]),
+    "radial_sinclair_jackson": ("radial distribution of Sinclair & Jackson (the tutorial's)",
+                                [(KINETIC, r"radialModel\s+CarnahanStarling;", "radialModel             SinclairJackson;")]),
+    "conductivity_syamlal": ("conductivity of Syamlal, Rogers & O'Brien",
+                             [(KINETIC, r"conductivityModel\s+Gidaspow;", "conductivityModel       Syamlal;")]),
+    "equilibrium": ("algebraic Theta (equilibrium on: production = dissipation in each cell)",
+                    [(KINETIC, r"equilibrium\s+off;", "equilibrium             on;")]),
+    "friction_from_0.5": ("frictional stress from alpha_s 0.5 (the tutorial's onset)",
+                          [(KINETIC, r"alphaMinFriction\s+0\.58;", "alphaMinFriction        0.5;")]),
+    "drag_syamlal_obrien": ("drag of Syamlal & O'Brien (no switch at alpha_g 0.8)",
+                            [(PHASES, r"type\s+GidaspowErgunWenYu;", "type            SyamlalOBrien;")]),
+    "drag_ergun": ("Ergun's drag at every solids fraction (no Wen-Yu branch)",
+                   [(PHASES, r"type\s+GidaspowErgunWenYu;", "type            Ergun;")]),
+    "inlet_theta_zero_gradient": ("Theta zero gradient at the inlet (not held at 1e-4 m^2/s^2)",
+                                  [("0.orig/Theta.particles", r"inlet\s*\{\s*type\s+fixedValue;\s*value\s+uniform 1e-4;",
+                                    "inlet\n    {\n        type            zeroGradient;")]),
+    "walls_johnson_jackson_theta": ("Johnson & Jackson's wall Theta (e_w 0.9, specularity 0.5): walls take up fluctuation energy",
+                                    [("0.orig/Theta.particles", r"walls\s*\{\s*type\s+zeroGradient;",
+                                      "walls\n    {\n        type            JohnsonJacksonParticleTheta;\n"
+                                      "        restitutionCoefficient 0.9;\n        specularityCoefficient 0.5;\n"
+                                      "        value           uniform 1e-4;")]),
+    "perturbed": (f"start with alpha_s perturbed by +-{PERTURBATION:.0%} at random per cell (inventory kept)", []),
+    "explicit_phase_pressure": ("the solids pressure explicit in the phase-fraction equation (implicitPhasePressure no): "
+                                "the numerics' own damping of alpha_s", [("system/fvSolution", r"implicitPhasePressure\s+yes;",
+                                                                         "implicitPhasePressure no;")]),
+    "deep_bed": ("a bed 0.5 m deep, as the fluidisedBed tutorial's (13,750 spheres in a column 1 m tall, "
+                 "1 cm cells): the bed's aspect (a diagnosis)",
+                 [("Allprepare", r"\nn_particles=4000 ", "\nn_particles=13750 "),
+                  ("Allprepare", r"\nheight=0\.45 ", "\nheight=1.0 "),
+                  ("system/blockMeshDict", r"(\(0(?:\.15)?\s+)0\.45(\s)", r"\g<1>1.0\g<2>", 4),
+                  ("system/blockMeshDict", r"\nny\s+45;", "\nny      100;")]),
+    "wide_bed": ("a bed 0.45 m wide, three times seed 000's (12,000 spheres, the same depth, 1 cm cells): "
+                 "room for bubbles narrower than the column (a diagnosis)",
+                 [("Allprepare", r"\nn_particles=4000 ", "\nn_particles=12000 "),
+                  ("Allprepare", r"\nwidth=0\.15 ", "\nwidth=0.45 "),
+                  ("system/blockMeshDict", r"\(0\.15(\s)", r"(0.45\g<1>", 4),
+                  ("system/blockMeshDict", r"\nnx\s+15;", "\nnx      45;"),
+                  ("system/controlDict", r"\(0\.075 ", "(0.225 ", 2)]),
+    "fine_grid": ("cells of 0.5 cm (30 x 90)",
+                  [("system/blockMeshDict", r"\nnx\s+15;", "\nnx      30;"),
+                   ("system/blockMeshDict", r"\nny\s+45;", "\nny      90;")]),
+}
+PARTICLES_2_5_MM = [(PHASES, r"(\n\s*d\s+)3e-4;", r"\g<1>0.0025;"),
+                    ("0/U.air", r"internalField\s+uniform \(0 0\.25 0\);", "internalField   uniform (0 1.92 0);"),
+                    ("0/U.air", r"inletVelocity\s+uniform \(0 0\.25 0\);", "inletVelocity      uniform (0 1.92 0);")]
+FLUIDISED_BED_VARIANTS = {
+    "fluidised_bed": ("OpenFOAM's RAS/fluidisedBed as shipped: 300 um, U 0.25 m/s, e 0.8, Sinclair-Jackson g0, "
+                      "friction from 0.5, 5 mm cells", []),
+    "fluidised_bed_restitution_0.97": ("the same with e = 0.97, seed 000's",
+                                       [(KINETIC, r"(\n\s*e\s+)0\.8;", r"\g<1>0.97;")]),
+    "fluidised_bed_particles_2.5mm": ("the same with seed 000's particles and inflow: d 2.5 mm, U 1.92 m/s",
+                                      PARTICLES_2_5_MM),
+    "fluidised_bed_particles_2.5mm_restitution_0.97": ("the same with d 2.5 mm, U 1.92 m/s and e = 0.97",
+                                                       PARTICLES_2_5_MM + [(KINETIC, r"(\n\s*e\s+)0\.8;", r"\g<1>0.97;")]),
+}
+VARIANTS = {**{name: ("seed000",) + v for name, v in SEED000_VARIANTS.items()},
+            **{name: ("fluidised_bed",) + v for name, v in FLUIDISED_BED_VARIANTS.items()}}
+DEFAULT_END_TIME = {"seed000": 6.0, "fluidised_bed": 0.6}  # s, unless a variant's own below
+END_TIME = {"fluidised_bed_particles_2.5mm": 2.0, "fluidised_bed_particles_2.5mm_restitution_0.97": 2.0}
+CHANGES_AFTER_PREPARE = {"perturbed"}
+
+
+class MechanismError(Exception):
+    """A variant that cannot be made or run, named."""
+
+
+def edit(path, pattern, replacement, expected=1):
+    with open(path) as f:
+        text = f.read()
+    new, count = re.subn(pattern, replacement, text)
+    if count != expected:
+        raise MechanismError(f"{path}: pattern {pattern!r} matched {count} times, not {expected}")
+    with open(path, "w") as f:
+        f.write(new)
+
+
+def set_control(case, end_time, write_interval):
+    edit(os.path.join(case, "system/controlDict"), r"\nendTime\s[^;]*;", f"\nendTime {end_time:g};")
+    edit(os.path.join(case, "system/controlDict"), r"\nwriteInterval\s[^;]*;", f"\nwriteInterval {write_interval:g};")
+
+
+def grid(case):
+    """(nx, ny) of the case's one block."""
+    with open(os.path.join(case, "system/blockMeshDict")) as f:
+        text = f.read()
+    counts = re.search(r"hex\s*\([^)]*\)\s*\(\s*(\S+)\s+(\S+)\s+1\s*\)", text)
+    if not counts:
+        raise MechanismError(f"{case}/system/blockMeshDict: no one-cell-deep hex block")
+    value = lambda v: int(re.search(rf"\n{v[1:]}\s+(\d+);", text).group(1)) if v.startswith("$") else int(v)  # noqa: E731
+    return value(counts.group(1)), value(counts.group(2))
+
+
+def fluidised_bed_template():
+    """OpenFOAM's RAS/fluidisedBed, extracted once from the source tarball into runs/."""
+    folder = os.path.join(RUNS, "openfoam_fluidised_bed")
+    if os.path.isdir(folder):
+        return folder
+    tarballs = sorted(glob.glob(os.path.join(CACHE, "download", "openfoam_1912*.orig.tar.*")))
+    if not tarballs:
+        raise MechanismError(f"no OpenFOAM source tarball in {CACHE}/download: run scripts/setup.sh "
+                             "(it fetches it with apt-get source openfoam)")
+    with tarfile.open(tarballs[0]) as tar:
+        members = [m for m in tar.getmembers() if f"/{FLUIDISED_BED}/" in m.name]
+        if not members:
+            raise MechanismError(f"{tarballs[0]}: no {FLUIDISED_BED}")
+        prefix = members[0].name.split(f"/{FLUIDISED_BED}/")[0] + f"/{FLUIDISED_BED}/"
+        os.makedirs(folder + ".part", exist_ok=True)
+        for member in members:
+            member.name = member.name[len(prefix):]
+            tar.extract(member, folder + ".part")
+    shutil.copy(os.path.join(TEMPLATE, "Allsolve"), folder + ".part")
+    with open(os.path.join(folder + ".part", "Allprepare"), "w") as f:
+        f.write("#!/usr/bin/env bash\n# As the tutorial runs: its 0/ holds the initial bed already\n"
+                "set -e\ncd \"$(dirname \"$0\")\"\nblockMesh > log.blockMesh 2>&1\n")
+    os.chmod(os.path.join(folder + ".part", "Allprepare"), 0o755)
+    os.rename(folder + ".part", folder)
+    return folder
+
+
+def perturb(case, seed=1):
+    """alpha_s of the packed rows (at their initial value) times 1 + PERTURBATION u, u uniform
+    on [-1, 1] per cell, then scaled so the rows hold what they held."""
+    path = os.path.join(case, "0", "alpha.particles")
+    with open(path) as f:
+        text = f.read()
+    found = re.search(r"internalField\s+nonuniform\s+List<scalar>\s*(\d+)\s*\((.*?)\)\s*;", text, flags=re.S)
+    if not found:
+        raise MechanismError(f"{path}: no nonuniform internalField to perturb")
+    alpha = [float(v) for v in found.group(2).split()]
+    packed = max(alpha)
+    cells = [k for k, a in enumerate(alpha) if a == packed]
+    rng = random.Random(seed)
+    factors = [1 + PERTURBATION * rng.uniform(-1, 1) for _ in cells]
+    scale = len(cells) / sum(factors)
+    for k, factor in zip(cells, factors):
+        alpha[k] = packed * factor * scale
+    body = "\n".join(f"{a:.9g}" for a in alpha)
+    text = text[:found.start()] + f"internalField   nonuniform List<scalar>\n{len(alpha)}\n(\n{body}\n)\n;" + text[found.end():]
+    with open(path, "w") as f:
+        f.write(text)
+
+
+def is_output(name):
+    """A run's output in the template folder (a time folder, a log, postProcessing)."""
+    try:
+        float(name)
+        return True
+    except ValueError:
+        return name.startswith("log.") or name == "postProcessing"
+
+
+def run_variant(name, end_time):
+    case = os.path.join(RUNS, name)
+    shutil.rmtree(case, ignore_errors=True)
+    os.makedirs(RUNS, exist_ok=True)
+    template, _, edits = VARIANTS[name]
+    source = TEMPLATE if template == "seed000" else fluidised_bed_template()
+    shutil.copytree(source, case, ignore=lambda folder, names: [n for n in names if is_output(n) and n != "0"])
+    for path, pattern, replacement, *expected in edits:
+        edit(os.path.join(case, path), pattern, replacement, *expected)
+    set_control(case, end_time or END_TIME.get(name, DEFAULT_END_TIME[template]), WRITE_INTERVAL[template])
+    for step in ("Allprepare", "Allsolve"):
+        if step == "Allsolve" and name in CHANGES_AFTER_PREPARE:
+            perturb(case)
+        with open(os.path.join(case, f"log.{step}"), "w") as log:
+            if subprocess.run([f"./{step}"], cwd=case, stdout=log, stderr=subprocess.STDOUT).returncode:
+                raise MechanismError(f"{name}: {step} failed; see {case}/log.{step}")
+    write_measures(case, os.path.join(RESULTS, name + ".csv"), WRITE_INTERVAL[template])
+    return name
+
+
+def bed_rows(alpha, nx):
+    """The rows whose initial mean solids fraction is at least half the densest row's."""
+    means = [sum(alpha[j * nx:(j + 1) * nx]) / nx for j in range(len(alpha) // nx)]
+    return [j for j, m in enumerate(means) if m >= 0.5 * max(means)]
+
+
+def lateral_std(alpha, nx, rows):
+    """The standard deviation of alpha across each row, averaged over the rows."""
+    total = 0.0
+    for j in rows:
+        row = alpha[j * nx:(j + 1) * nx]
+        mean = sum(row) / nx
+        total += math.sqrt(sum((a - mean) ** 2 for a in row) / nx)
+    return total / len(rows)
+
+
+def bed_theta(alpha, theta, nx, rows):
+    cells = range(rows[0] * nx, (rows[-1] + 1) * nx)
+    return sum(alpha[k] * theta[k] for k in cells) / sum(alpha[k] for k in cells)
+
+
+def postprocessing_series(case, name):
+    """(t, value) rows of a function object's .dat files under postProcessing/<name>."""
+    out = []
+    for root, _, files in os.walk(os.path.join(case, "postProcessing", name)):
+        for file in files:
+            with open(os.path.join(root, file)) as f:
+                out += [tuple(float(v) for v in line.split()[:2]) for line in f if not line.startswith("#")]
+    return sorted(out)
+
+
+def number_in(path, pattern):
+    with open(path) as f:
+        found = re.search(pattern, f.read())
+    if not found:
+        raise MechanismError(f"{path}: no {pattern!r}")
+    return float(found.group(1))
+
+
+def whole_bed_support(case):
+    """(t, whole-bed dp / bed weight per area): the area-averaged p on the inlet less the
+    outlet's 101325 Pa and the gas column, over the solids' weight (their volume sum alpha_s V,
+    less buoyancy) per inlet area; [] for a case without those function objects."""
+    inlet, solids = postprocessing_series(case, "pInlet"), postprocessing_series(case, "solidsVolume")
+    if not inlet or not solids:
+        return []
+    rho_s = number_in(os.path.join(case, "constant/thermophysicalProperties.particles"), r"\n\s*rho\s+([0-9.eE+-]+);")
+    rho_g = number_in(os.path.join(case, "constant/thermophysicalProperties.air"), r"\n\s*rho\s+([0-9.eE+-]+);")
+    height = number_in(os.path.join(case, "Allprepare"), r"\nheight=([0-9.eE+-]+)")
+    area = number_in(glob.glob(os.path.join(case, "postProcessing/pInlet/*/*.dat"))[0], r"# Area\s*:\s*([0-9.eE+-]+)")
+    weight = solids[-1][1] * (rho_s - rho_g) * 9.81 / area
+    return [(t, (p - 101325 - rho_g * 9.81 * height) / weight) for t, p in inlet]
+
+
+def probes(case):
+    """(t, dp) of the pressure probes: p(bottom cell centre) - p(20 cm above)."""
+    out = []
+    for root, _, files in os.walk(os.path.join(case, "postProcessing", "pressure")):
+        for name in files:
+            with open(os.path.join(root, name)) as f:
+                for line in f:
+                    if line.startswith("#"):
+                        continue
+                    values = line.split()
+                    out.append((float(values[0]), float(values[1]) - float(values[2])))
+    return sorted(out)
+
+
+def write_measures(case, path, write_interval):
+    """One row per write: the measures of the module's doc. The departure from the cells' mean
+    is alpha_s less its cell's time mean over the run's second half: a steady lateral profile
+    (the walls') and horizontal layers moving as one (1-D waves, slugs) both give 0 there."""
+    nx, ny = grid(case)
+    rows = bed_rows(field(case, "0", "alpha.particles"), nx)
+    written = [name for name in times(case) if float(name) > 0]
+    alpha = {name: field(case, name, "alpha.particles") for name in written}
+    end = float(written[-1])
+    late = [name for name in written if float(name) >= end / 2 - 1e-9]
+    cell_mean = [sum(alpha[name][k] for name in late) / len(late) for k in range(nx * ny)]
+    dp = probes(case)
+    support = whole_bed_support(case)
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    with open(path, "w", newline="") as f:
+        out = csv.writer(f)
+        out.writerow(["t (s)", "lateral std of alpha_s", "lateral std of alpha_s less its cell's mean",
+                      "min alpha_s", "bed Theta (m2/s2)",
+                      "dp 20 cm (Pa), mean over the write interval", "dp 20 cm (Pa), std over the write interval",
+                      "whole-bed dp / bed weight, mean over the write interval"])
+        for name in written:
+            t, a = float(name), alpha[name]
+            theta = field(case, name, "Theta.particles")
+            theta = theta * len(a) if len(theta) == 1 else theta
+            departure = [x - m for x, m in zip(a, cell_mean)]
+            least = min(a[k] for k in range(rows[0] * nx, (rows[-1] + 1) * nx))
+            window = [p for s, p in dp if t - write_interval < s <= t + 1e-9] or [math.nan]
+            mean = sum(window) / len(window)
+            spread = math.sqrt(sum((p - mean) ** 2 for p in window) / len(window))
+            held = [w for s, w in support if t - write_interval < s <= t + 1e-9] or [math.nan]
+            out.writerow([f"{t:g}", f"{lateral_std(a, nx, rows):.6g}", f"{lateral_std(departure, nx, rows):.6g}",
+                          f"{least:.6g}", f"{bed_theta(a, theta, nx, rows):.6g}", f"{mean:.6g}", f"{spread:.6g}",
+                          f"{sum(held) / len(held):.6g}"])
+
+
+def read_measures(name):
+    with open(os.path.join(RESULTS, name + ".csv")) as f:
+        rows = list(csv.reader(f))[1:]
+    return [[float(v) for v in row] for row in rows]
+
+
+def summary(name):
+    """Second-half means: lateral std, min alpha_s, bed Theta, dp mean, dp std (from the
+    write intervals' means and spreads)."""
+    rows = read_measures(name)
+    end = rows[-1][0]
+    late = [r for r in rows if r[0] >= end / 2 - 1e-9]
+    mean = lambda k: sum(r[k] for r in late) / len(late)  # noqa: E731
+    dp_mean = mean(5)
+    dp_var = sum(r[6] ** 2 + (r[5] - dp_mean) ** 2 for r in late) / len(late)
+    return {"end": end, "from": end / 2, "lateral_std": mean(1), "departure_std": mean(2),
+            "min_alpha": min(r[3] for r in late), "theta": mean(4), "dp_mean": dp_mean, "dp_std": math.sqrt(dp_var),
+            "support": mean(7) if len(late[0]) > 7 else math.nan}
+
+
+def report_text():
+    """The table of the variants whose measures are in results/tfm_mechanism/, and the names of
+    those that are not."""
+    lines = ["| variant | change | lateral std of α_s | of its departure from the cell's mean | least α_s "
+             "| bed Θ (m²/s²) | Δp 20 cm (Pa) | Δp std (Pa) | whole-bed Δp / weight | span (s) | 2-D bubbles |",
+             "|---|---|---|---|---|---|---|---|---|---|---|"]
+    done = [name for name in VARIANTS if os.path.exists(os.path.join(RESULTS, name + ".csv"))]
+    for name in done:
+        s = summary(name)
+        dp = "–" if math.isnan(s["dp_mean"]) else f"{s['dp_mean']:.0f} | {s['dp_std']:.0f}"
+        lines.append(f"| `{name}` | {VARIANTS[name][1]} | {s['lateral_std']:.4f} | {s['departure_std']:.4f} | "
+                     f"{s['min_alpha']:.3f} | {s['theta']:.2e} | {dp if dp != '–' else '– | –'} | "
+                     f"{'–' if math.isnan(s['support']) else format(s['support'], '.3f')} | {s['from']:g}–{s['end']:g} | {'yes' if s['departure_std'] > BUBBLING else 'no'} |")
+    head = ("Kinetic-theory TFM, one change at a time: seed 000's uniform-inflow bed (`tfm_bubbling_bed`) "
+            "and OpenFOAM's `fluidisedBed` tutorial (`tfm_mechanism.py`). Averages over the second half of "
+            "each run of the fields written every "
+            + ", ".join(f"{v:g} s ({k})" for k, v in WRITE_INTERVAL.items())
+            + f", over the bed's rows. 2-D bubbles: the rows' mean lateral std of α_s's departure from its "
+            f"cell's mean above {BUBBLING}.\n\n")
+    return head + "\n".join(lines) + "\n", [n for n in VARIANTS if n not in done]
+
+
+def report():
+    text, missing = report_text()
+    with open(os.path.join(HERE, "results", "tfm_mechanism.md"), "w") as f:
+        f.write(text)
+    print(text, end="")
+    if missing:
+        print("not run: " + " ".join(missing))
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    sub = parser.add_subparsers(dest="command", required=True)
+    run = sub.add_parser("run", help="run variants (all by default)")
+    run.add_argument("--variants", nargs="+", default=list(VARIANTS), choices=list(VARIANTS), metavar="NAME")
+    run.add_argument("--end-time", type=float, default=None,
+                     help="s; default " + ", ".join(f"{v:g} s for {k}" for k, v in DEFAULT_END_TIME.items()))
+    run.add_argument("--jobs", type=int, default=2)
+    sub.add_parser("report", help="the table of the variants run")
+    sub.add_parser("measure", help="read the measures again from the runs in runs/tfm_mechanism/")
+    args = parser.parse_args(argv)
+    if args.command == "measure":
+        for name in VARIANTS:
+            case = os.path.join(RUNS, name)
+            if os.path.isdir(case) and len(times(case)) > 1:
+                write_measures(case, os.path.join(RESULTS, name + ".csv"), WRITE_INTERVAL[VARIANTS[name][0]])
+    if args.command in ("measure", "report"):
+        report()
+        return 0
+    if any(VARIANTS[name][0] == "fluidised_bed" for name in args.variants):
+        fluidised_bed_template()  # once, before the runs that copy it
+    failed = 0
+    with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
+        futures = {pool.submit(run_variant, name, args.end_time): name for name in args.variants}
+        for future in concurrent.futures.as_completed(futures):
+            try:
+                print(f"{future.result()}: done", flush=True)
+            except MechanismError as error:
+                print(error, file=sys.stderr, flush=True)
+                failed += 1
+    report()
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,80 @@
+"""tfm_mechanism.py's measures (studies/seed000) on hand-made fields with answers by hand, and
+its committed table against its committed measures:
+
+- the lateral std of alpha_s: rows (0.5, 0.3) and (0.4, 0.4) give (0.1 + 0) / 2 = 0.05;
+- the departure from each cell's time mean is 0 for a steady lateral profile and for layers
+  that move as one (each row uniform, its value changing in time), and 0.1 for a row that
+  swaps (0.5, 0.3) and (0.3, 0.5) between two writes;
+- the bed's rows: those whose initial mean is at least half the densest row's;
+- the alpha-weighted Theta over the bed's rows;
+- the second-half summary of a hand-made series, the Δp std from the intervals' means and
+  spreads (the law of total variance);
+- results/tfm_mechanism.md is what report_text() makes of results/tfm_mechanism/*.csv.
+"""
+import csv
+import math
+import os
+import sys
+import tempfile
+
+from tfdem import STUDIES
+
+sys.path.insert(0, os.path.join(STUDIES, "seed000"))
+import tfm_mechanism as mechanism  # noqa: E402
+
+failures = []
+
+
+def check(name, condition, detail=""):
+    print(("PASS " if condition else "FAIL ") + name + (f" {detail}" if detail else ""))
+    if not condition:
+        failures.append(name)
+
+
+def close(name, value, expected, tol=1e-12):
+    check(name, abs(value - expected) <= tol, f"{value!r} vs {expected!r}")
+
+
+close("lateral std, rows (0.5, 0.3) and (0.4, 0.4)", mechanism.lateral_std([0.5, 0.3, 0.4, 0.4], 2, [0, 1]), 0.05)
+
+steady = [[0.5, 0.3], [0.5, 0.3]]
+layers = [[0.5, 0.5], [0.3, 0.3]]
+swapping = [[0.5, 0.3], [0.3, 0.5]]
+for name, writes, expected in (("a steady profile", steady, 0.0), ("layers moving as one", layers, 0.0),
+                               ("a row that swaps", swapping, 0.1)):
+    mean = [sum(w[k] for w in writes) / len(writes) for k in range(2)]
+    departures = [mechanism.lateral_std([a - m for a, m in zip(w, mean)], 2, [0]) for w in writes]
+    close(f"departure from the cell's mean, {name}", sum(departures) / len(departures), expected)
+
+check("bed rows: initial means 0.6, 0.6, 0.33, 0.1, 0", mechanism.bed_rows([0.6, 0.6, 0.6, 0.6, 0.33, 0.33,
+                                                                           0.1, 0.1, 0, 0], 2) == [0, 1, 2])
+close("bed Theta, alpha-weighted", mechanism.bed_theta([0.6, 0.2, 0.0, 0.0], [1.0, 5.0, 9.0, 9.0], 2, [0]),
+      (0.6 * 1 + 0.2 * 5) / 0.8)
+
+rows = [(1, 0.1, 0.1, 0.5, 0.01, 100, 0, 0.9), (2, 0.2, 0.2, 0.4, 0.02, 110, 3, 0.8),
+        (3, 0.3, 0.4, 0.3, 0.03, 130, 4, 0.7), (4, 0.5, 0.6, 0.2, 0.05, 90, 0, 0.6)]
+with tempfile.TemporaryDirectory() as folder:
+    mechanism.RESULTS = folder
+    with open(os.path.join(folder, "hand.csv"), "w", newline="") as f:
+        out = csv.writer(f)
+        out.writerow(["header"] * 8)
+        out.writerows(rows)
+    s = mechanism.summary("hand")
+close("summary: from half the end time", s["from"], 2.0)
+close("summary: lateral std over t = 2-4 s", s["lateral_std"], (0.2 + 0.3 + 0.5) / 3)
+close("summary: departure over t = 2-4 s", s["departure_std"], (0.2 + 0.4 + 0.6) / 3)
+close("summary: least alpha_s", s["min_alpha"], 0.2)
+close("summary: Δp mean", s["dp_mean"], 110.0)
+close("summary: Δp std, total variance of (110 ± 3), (130 ± 4), (90 ± 0)", s["dp_std"],
+      math.sqrt((9 + 0 + 16 + 400 + 0 + 400) / 3))
+close("summary: whole-bed support", s["support"], (0.8 + 0.7 + 0.6) / 3)
+
+mechanism.RESULTS = os.path.join(STUDIES, "seed000", "results", "tfm_mechanism")
+text, missing = mechanism.report_text()
+with open(os.path.join(STUDIES, "seed000", "results", "tfm_mechanism.md")) as f:
+    check("results/tfm_mechanism.md is the report of the committed measures", f.read() == text,
+          "run tfm_mechanism.py report")
+check("every variant's measures are committed", not missing, " ".join(missing))
+
+print(f"{len(failures)} failed" if failures else "all passed")
+sys.exit(1 if failures else 0)
