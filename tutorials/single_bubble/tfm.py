@@ -1,0 +1,158 @@
+"""Bokkers' single bubble (seed 001 Fig. 8-9) with the two-fluid model, beside the DPM.
+
+    tfm.py run      # the TFM case tfm/ in runs/tfm/, by Debian's twoPhaseEulerFoam (minutes)
+    tfm.py report   # the bubble and the coloured layer's mixing, results/tfm.csv
+
+The case (tfm/, OpenFOAM v1912's kinetic theory with seed 001's restitution 0.97, Ergun/Wen-Yu
+drag) takes from this DPM case what they share, read from its files: the grid and its jet
+(system/blockMeshDict), the background inflow and the jet's table (0/U), the end time and
+write interval (system/controlDict), and the inventory (packing.yaml's count of 2.5 mm
+spheres in the 0.30 x 0.015 m section), which `run` lays down as a packed bed at solids
+fraction ALPHA_PACKED, its lower half coloured. The colour is a solids fraction of its own,
+alpha.coloured, carried with the solids' velocity (a scalarTransport function object).
+
+`report` measures both models the same way (tfdem.bubble): the bubble is the largest region
+with gas fraction above 0.8 below the freeboard (its equivalent diameter, aspect ratio and
+centroid height), and the mixing is the fraction of the coloured solids above the median
+height of all the solids (0 while the layers stay apart, 0.5 once mixed): for the TFM the
+solids are spread evenly over each cell's height, so the median and the fraction above it are
+continuous in time.
+"""
+import argparse
+import math
+import os
+import re
+import shutil
+import sys
+
+from tfdem import bubble, outputs
+from tfdem.case import Case
+from tfdem.packing import packing_settings
+from tfdem.run import run
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+TEMPLATE = os.path.join(HERE, "tfm")
+RUN = os.path.join(HERE, "runs", "tfm")
+RESULTS = os.path.join(HERE, "results", "tfm.csv")
+# The poured bed's solids fraction (packing.yaml's note), between the frictional stress's
+# onset (0.58) and its packing limit (0.62): the bed starts packed and friction-supported
+ALPHA_PACKED = 0.6
+
+
+def jet_table(dpm):
+    """The DPM case's 0/U jet entry, its `uniformValue table (...)` text."""
+    text = open(dpm.file("0", "U")).read()
+    found = re.search(r"\bjet\s*\{.*?(uniformValue\s+table\s*\(.*?\n\s*\);)", text, flags=re.S)
+    if not found:
+        raise SystemExit(f"{dpm.file('0', 'U')}: no jet table")
+    return found.group(1)
+
+
+def bed_height(dpm, tfm):
+    """Height (m) of the packed bed holding packing.yaml's spheres in the DPM's section."""
+    count = packing_settings(dpm)["count"]
+    d = float(re.search(r"\n\s*d\s+([0-9.eE+-]+);", open(tfm.file("constant", "phaseProperties")).read()).group(1))
+    grid = dpm.grid()
+    width = grid.spacing[0] * grid.counts[0]
+    depth = grid.spacing[2] * grid.counts[2]
+    return count * math.pi * d ** 3 / 6 / (width * depth * ALPHA_PACKED)
+
+
+def layer(centres, dy, top):
+    """Per cell (the case's order, from its centres): ALPHA_PACKED times the fraction of the
+    cell's height below `top`."""
+    return [ALPHA_PACKED * min(max((top - (y - dy / 2)) / dy, 0.0), 1.0) for _, y, _ in centres]
+
+
+def write_internal(path, values):
+    text = open(path).read()
+    body = f"nonuniform List<scalar>\n{len(values)}\n(\n" + "\n".join(f"{v:.9g}" for v in values) + "\n)"
+    text, n = re.subn(r"internalField\s+[^;]*;", f"internalField   {body};", text, count=1)
+    if n != 1:
+        raise SystemExit(f"{path}: no internalField")
+    open(path, "w").write(text)
+
+
+def prepare():
+    dpm = Case(HERE)
+    shutil.rmtree(RUN, ignore_errors=True)
+    shutil.copytree(TEMPLATE, RUN)
+    tfm = Case(RUN)
+    air = tfm.file("0.orig", "U.air")
+    text = open(air).read()
+    text = re.sub(r"uniformValue\s+table\s*\([^;]*\);", jet_table(dpm).replace("\\", "\\\\"), text, count=1)
+    background = f"uniform (0 {dpm.patch_value('U', 'inlet')[1]:g} 0)"
+    text = re.sub(r"(internalField|inletVelocity)(\s+)uniform \([^)]*\)", rf"\g<1>\g<2>{background}", text)
+    open(air, "w").write(text)
+    tfm.set_control(endTime=dpm.control("endTime"), writeInterval=dpm.control("writeInterval"))
+    run(["blockMesh"], RUN, "log.blockMesh")
+    shutil.copytree(tfm.file("0.orig"), tfm.file("0"))
+    run(["postProcess", "-func", "writeCellCentres", "-time", "0"], RUN, "log.writeCellCentres")
+    centres, dy = outputs.field(RUN, "0", "C"), dpm.grid().spacing[1]
+    height = bed_height(dpm, tfm)
+    write_internal(tfm.file("0", "alpha.particles"), layer(centres, dy, height))
+    write_internal(tfm.file("0", "alpha.coloured"), layer(centres, dy, height / 2))
+    print(f"tfm: bed {height:.4f} m at solids fraction {ALPHA_PACKED}, the lower {height / 2:.4f} m coloured")
+
+
+def median_and_coloured_above(solids, coloured, dy):
+    """(median height of the solids, fraction of the coloured solids above it) of two (rows,
+    columns) maps of a uniform grid with rows dy high; each cell's solids spread evenly over
+    its height."""
+    rows, colour = [float(r.sum()) for r in solids], [float(r.sum()) for r in coloured]
+    half, below = sum(rows) / 2, 0.0
+    for j, row in enumerate(rows):
+        if below + row >= half:
+            f = (half - below) / row  # the share of row j below the median
+            above = sum(colour[j + 1:]) + colour[j] * (1 - f)
+            return (j + f) * dy, above / sum(colour)
+        below += row
+    raise ValueError("no solids")
+
+
+def history(path=RUN):
+    """[(t, bubble or None, mixing)] over the written times after 0."""
+    grid = Case(HERE).grid()
+    cells = bubble.cell_rows_columns(path, grid)
+    shape = (grid.counts[1], grid.counts[0])
+    out = []
+    for name in outputs.times(path):
+        if float(name) <= 0 or not os.path.exists(os.path.join(path, name, "alpha.coloured")):
+            continue
+        gas = bubble.to_map(outputs.field(path, name, "alpha.air"), cells, shape)
+        found = bubble.find_bubble(gas, grid.spacing[0], grid.spacing[1])
+        solids, coloured = (bubble.to_map(outputs.field(path, name, f), cells, shape)
+                            for f in ("alpha.particles", "alpha.coloured"))
+        _, mixed = median_and_coloured_above(solids, coloured, grid.spacing[1])
+        out.append((float(name), found, mixed))
+    return out
+
+
+def report():
+    rows = history()
+    os.makedirs(os.path.dirname(RESULTS), exist_ok=True)
+    with open(RESULTS, "w") as f:
+        f.write("t (s),bubble diameter (m),bubble aspect (height/width),bubble centroid height (m),"
+                "coloured fraction above the median height\n")
+        for t, b, mixed in rows:
+            cells = (f"{b['diameter']:.5g},{b['aspect']:.4g},{b['y']:.5g}" if b else ",,")
+            f.write(f"{t:g},{cells},{mixed:.5g}\n")
+    for t, b, mixed in rows:
+        print(f"t = {t:5.2f} s  " + (f"bubble {100 * b['diameter']:5.1f} cm, aspect {b['aspect']:.2f}, at "
+                                      f"{100 * b['y']:5.1f} cm" if b else "no bubble") + f"; mixing {mixed:.3f}")
+    print(f"wrote {os.path.relpath(RESULTS, HERE)}")
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("command", choices=("run", "report"))
+    args = parser.parse_args(argv)
+    if args.command == "run":
+        prepare()
+        run(["twoPhaseEulerFoam"], RUN, "log.twoPhaseEulerFoam")
+    report()
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
