@@ -28,7 +28,7 @@ ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)),
 REGISTRY = os.path.join(ROOT, "docs", "numbers.yaml")
 MARKER = re.compile(r"(-?[0-9][0-9,]*(?:\.[0-9]+)?(?:e[-+]?[0-9]+)?)<!-- n:([A-Za-z0-9_.-]+) -->")
 PAGES = ("README.md", "docs/src/**/*.md", "tutorials/*/README.md", "studies/*/README.md", "studies/*/*.md",
-         "bench/README.md")
+         "bench/README.md", "bench/*/README.md")
 
 
 # Helpers the registry's expressions use: each reads a committed file under the repository ------
