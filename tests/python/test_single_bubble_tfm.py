@@ -7,10 +7,12 @@
   (0.75 of 1.5 reached at 0.6 + 0.25 x 0.6) and 0.15 x 0.75 / 0.75 = 0.15 of the colour above it;
 - the packed bed's height: 72,600 spheres of 2.5 mm in 0.30 x 0.015 m at solids fraction 0.6
   stand 72600 x 8.1812e-9 m^3 / (0.0045 m^2 x 0.6) = 0.21998 m (by hand);
-- the initial layer of a cell row straddling the top: 0.6 x its share below the top.
+- the initial layer of a cell row straddling the top: 0.6 x its share below the top;
+- --refine 2 doubles each block's cells along x and y and leaves the grading alone.
 """
 import os
 import sys
+import tempfile
 
 import numpy
 
@@ -44,6 +46,17 @@ close("coloured above it", above, 0.15)
 here = os.path.join(TUTORIALS, "single_bubble")
 close("packed bed height (m)", tfm.bed_height(Case(here), Case(os.path.join(here, "tfm"))), 0.21998, 5e-5)
 close("a row straddling the top (0.2125-0.225 m, top 0.22 m)", tfm.layer([(0, 0.21875, 0)], 0.0125, 0.22)[0], 0.6 * 0.6, 1e-12)
+
+with tempfile.NamedTemporaryFile("w", suffix="blockMeshDict", delete=False) as f:
+    f.write("blocks\n(\n    hex (0 1 5 4 8 9 13 12) (19 80 1) simpleGrading (1 1 1)\n"
+            "    hex (1 2 6 5 9 10 14 13) (2 80 1) simpleGrading (1 1 1)\n);\n")
+tfm.refine_blocks(f.name, 2)
+refined = open(f.name).read()
+os.unlink(f.name)
+ok = "(38 160 1) simpleGrading (1 1 1)" in refined and "(4 160 1) simpleGrading (1 1 1)" in refined
+print(("PASS " if ok else "FAIL ") + "refine 2: (19 80 1) and (2 80 1) become (38 160 1) and (4 160 1), grading kept")
+if not ok:
+    failures.append("refine")
 
 print(f"{len(failures)} failed" if failures else "all passed")
 sys.exit(1 if failures else 0)

@@ -12,7 +12,8 @@ runs/<law>/ (resumable: a stopped run resumes from its last write, a finished on
 skipped). `report` finds the bubble in every written gas-fraction field (tfdem.bubble: the
 largest region with eps_g > 0.8 below the freeboard), prints its equivalent diameter, aspect
 ratio and rise velocity, the mixing of the coloured lower half of the bed (the fraction of its
-particles above the initial interface), and draws snapshots.png (particles and the eps_g = 0.8
+particles above the bed's median height), keeps both at every write in results/<law>.csv (as
+tfm.py keeps the two-fluid model's in results/tfm.csv), and draws snapshots.png (particles and the eps_g = 0.8
 contour 0.1, 0.2 and 0.4 s after injection, as Fig. 8 and 9) and bubble.png (size, shape and
 height against time). The jet's start and end come from the case's 0/U.
 """
@@ -36,6 +37,8 @@ LAWS = {"beetstra": {"coupling.drag_law": "beetstra"},
         "ergun_wen_yu": {"coupling.drag_law": "ergun_wen_yu_review"}}
 VARIANTS = with_hard_sphere(LAWS)
 AFTER_INJECTION = (0.1, 0.2, 0.4)  # s, seed 001 Fig. 8
+# the two-fluid model's results beside the DPM's in bubble.png (tfm.py)
+TFM_RESULTS = {"tfm": "TFM (kinetic theory)", "tfm_refine2": "TFM, cells halved"}
 
 
 class BubbleRun(VariantRun):
@@ -112,6 +115,18 @@ def mixing(case_path, root=HERE):
     return out
 
 
+def write_results(path, history, mixed):
+    """The run's bubble and mixing at each written time, as tfm.py writes the TFM's."""
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    with open(path, "w") as f:
+        f.write("t (s),bubble diameter (m),bubble aspect (height/width),bubble centroid height (m),"
+                "coloured fraction above the median height\n")
+        for t, b in history:
+            cells = f"{b['diameter']:.5g},{b['aspect']:.4g},{b['y']:.5g}" if b else ",,"
+            near = [m for s, m in mixed.items() if abs(s - t) < 1e-6]
+            f.write(f"{t:g},{cells},{f'{near[0]:.5g}' if near else ''}\n")
+
+
 def report(root=HERE):
     import matplotlib
     matplotlib.use("Agg")
@@ -138,19 +153,26 @@ def report(root=HERE):
                 print(f"  {after:g} s after injection: no bubble below the freeboard")
         u = rise_velocity(history, t_off, t_jet + max(AFTER_INJECTION))
         print(f"  rise velocity after the jet: {u:.2f} m/s" if u is not None else "  rise velocity: too few samples")
-        if os.path.isdir(os.path.join(path, "VTK")):
-            mixed = mixing(path, root)
-            print(f"  coloured lower half above the bed's median height at {mixed[-1][0]:g} s:"
-                  f" {100 * mixed[-1][1]:.2f} % (0: layers apart, 50: mixed)")
+        mixed = dict(mixing(path, root)) if os.path.isdir(os.path.join(path, "VTK")) else {}
+        if mixed:
+            last = max(mixed)
+            print(f"  coloured lower half above the bed's median height at {last:g} s:"
+                  f" {100 * mixed[last]:.2f} % (0: layers apart, 50: mixed)")
+        write_results(os.path.join(root, "results", law + ".csv"), history, mixed)
     if not histories:
         print("no runs yet")
         return
-    fig, axes = plt.subplots(1, 3, figsize=(10, 3))
-    for law, history in histories.items():
-        points = [(t - t_jet, b) for t, b in history if b is not None and t >= t_jet]
-        for ax, key, scale in zip(axes, ("diameter", "aspect", "y"), (100, 1, 100)):
-            ax.plot([t for t, _ in points], [scale * b[key] for _, b in points], ".-", label=law)
-    for ax, label in zip(axes, ("equivalent diameter (cm)", "aspect ratio (height/width)", "centroid height (cm)")):
+    fig, axes = plt.subplots(1, 4, figsize=(13, 3))
+    for name in [law for law in VARIANTS if law in histories] + [n for n in TFM_RESULTS if n not in histories]:
+        path = os.path.join(root, "results", name + ".csv")
+        if not os.path.exists(path):
+            continue
+        rows = [line.split(",") for line in open(path).read().splitlines()[1:]]
+        for ax, k, scale in zip(axes, (1, 2, 3, 4), (100, 1, 100, 1)):
+            points = [(float(r[0]) - t_jet, scale * float(r[k])) for r in rows if r[k] and float(r[0]) >= t_jet]
+            ax.plot([t for t, _ in points], [v for _, v in points], ".-", label=TFM_RESULTS.get(name, name))
+    for ax, label in zip(axes, ("equivalent diameter (cm)", "aspect ratio (height/width)", "centroid height (cm)",
+                                "coloured share above the median height")):
         ax.set_xlabel("t after injection (s)")
         ax.set_ylabel(label)
     axes[0].legend(fontsize=7)

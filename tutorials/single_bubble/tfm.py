@@ -1,7 +1,10 @@
 """Bokkers' single bubble (seed 001 Fig. 8-9) with the two-fluid model, beside the DPM.
 
-    tfm.py run      # the TFM case tfm/ in runs/tfm/, by Debian's twoPhaseEulerFoam (minutes)
-    tfm.py report   # the bubble and the coloured layer's mixing, results/tfm.csv
+    tfm.py run [--refine 2]      # the TFM case tfm/ in runs/tfm/ by Debian's twoPhaseEulerFoam
+    tfm.py report [--refine 2]   # the bubble and the coloured layer's mixing, results/tfm.csv
+
+`--refine k` runs and reports the case on cells k times smaller each way (runs/tfm_refine<k>/,
+results/tfm_refine<k>.csv): how much of the TFM's mixing is its grid's.
 
 The case (tfm/, OpenFOAM v1912's kinetic theory with seed 001's restitution 0.97, Ergun/Wen-Yu
 drag) takes from this DPM case what they share, read from its files: the grid and its jet
@@ -32,8 +35,12 @@ from tfdem.run import run
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 TEMPLATE = os.path.join(HERE, "tfm")
-RUN = os.path.join(HERE, "runs", "tfm")
-RESULTS = os.path.join(HERE, "results", "tfm.csv")
+
+
+def paths(refine):
+    """(run folder, results file) of the case on cells `refine` times smaller."""
+    name = "tfm" if refine == 1 else f"tfm_refine{refine}"
+    return os.path.join(HERE, "runs", name), os.path.join(HERE, "results", name + ".csv")
 # The poured bed's solids fraction (packing.yaml's note), between the frictional stress's
 # onset (0.58) and its packing limit (0.62): the bed starts packed and friction-supported
 ALPHA_PACKED = 0.6
@@ -73,11 +80,23 @@ def write_internal(path, values):
     open(path, "w").write(text)
 
 
-def prepare():
+def refine_blocks(path, factor):
+    """The blockMeshDict's cell counts times `factor` along x and y."""
+    text = open(path).read()
+    text, count = re.subn(r"(hex\s*\([^)]*\)\s*)\((\d+)\s+(\d+)\s+1\)",
+                          lambda m: f"{m.group(1)}({int(m.group(2)) * factor} {int(m.group(3)) * factor} 1)", text)
+    if count == 0:
+        raise SystemExit(f"{path}: no one-cell-deep hex block to refine")
+    open(path, "w").write(text)
+
+
+def prepare(run_path, refine=1):
     dpm = Case(HERE)
-    shutil.rmtree(RUN, ignore_errors=True)
-    shutil.copytree(TEMPLATE, RUN)
-    tfm = Case(RUN)
+    shutil.rmtree(run_path, ignore_errors=True)
+    shutil.copytree(TEMPLATE, run_path)
+    tfm = Case(run_path)
+    if refine > 1:
+        refine_blocks(tfm.file("system", "blockMeshDict"), refine)
     air = tfm.file("0.orig", "U.air")
     text = open(air).read()
     text = re.sub(r"uniformValue\s+table\s*\([^;]*\);", jet_table(dpm).replace("\\", "\\\\"), text, count=1)
@@ -85,10 +104,10 @@ def prepare():
     text = re.sub(r"(internalField|inletVelocity)(\s+)uniform \([^)]*\)", rf"\g<1>\g<2>{background}", text)
     open(air, "w").write(text)
     tfm.set_control(endTime=dpm.control("endTime"), writeInterval=dpm.control("writeInterval"))
-    run(["blockMesh"], RUN, "log.blockMesh")
+    run(["blockMesh"], run_path, "log.blockMesh")
     shutil.copytree(tfm.file("0.orig"), tfm.file("0"))
-    run(["postProcess", "-func", "writeCellCentres", "-time", "0"], RUN, "log.writeCellCentres")
-    centres, dy = outputs.field(RUN, "0", "C"), dpm.grid().spacing[1]
+    run(["postProcess", "-func", "writeCellCentres", "-time", "0"], run_path, "log.writeCellCentres")
+    centres, dy = outputs.field(run_path, "0", "C"), tfm.grid().spacing[1]
     height = bed_height(dpm, tfm)
     write_internal(tfm.file("0", "alpha.particles"), layer(centres, dy, height))
     write_internal(tfm.file("0", "alpha.coloured"), layer(centres, dy, height / 2))
@@ -110,9 +129,9 @@ def median_and_coloured_above(solids, coloured, dy):
     raise ValueError("no solids")
 
 
-def history(path=RUN):
+def history(path):
     """[(t, bubble or None, mixing)] over the written times after 0."""
-    grid = Case(HERE).grid()
+    grid = Case(path).grid()
     cells = bubble.cell_rows_columns(path, grid)
     shape = (grid.counts[1], grid.counts[0])
     out = []
@@ -128,10 +147,10 @@ def history(path=RUN):
     return out
 
 
-def report():
-    rows = history()
-    os.makedirs(os.path.dirname(RESULTS), exist_ok=True)
-    with open(RESULTS, "w") as f:
+def report(run_path, results):
+    rows = history(run_path)
+    os.makedirs(os.path.dirname(results), exist_ok=True)
+    with open(results, "w") as f:
         f.write("t (s),bubble diameter (m),bubble aspect (height/width),bubble centroid height (m),"
                 "coloured fraction above the median height\n")
         for t, b, mixed in rows:
@@ -140,17 +159,21 @@ def report():
     for t, b, mixed in rows:
         print(f"t = {t:5.2f} s  " + (f"bubble {100 * b['diameter']:5.1f} cm, aspect {b['aspect']:.2f}, at "
                                       f"{100 * b['y']:5.1f} cm" if b else "no bubble") + f"; mixing {mixed:.3f}")
-    print(f"wrote {os.path.relpath(RESULTS, HERE)}")
+    print(f"wrote {os.path.relpath(results, HERE)}")
 
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("command", choices=("run", "report"))
+    parser.add_argument("--refine", type=int, default=1, help="cells this many times smaller each way")
     args = parser.parse_args(argv)
+    if args.refine < 1:
+        parser.error(f"--refine must be a whole number of 1 or more, got {args.refine}")
+    run_path, results = paths(args.refine)
     if args.command == "run":
-        prepare()
-        run(["twoPhaseEulerFoam"], RUN, "log.twoPhaseEulerFoam")
-    report()
+        prepare(run_path, args.refine)
+        run(["twoPhaseEulerFoam"], run_path, "log.twoPhaseEulerFoam")
+    report(run_path, results)
     return 0
 
 
