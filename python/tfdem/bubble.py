@@ -8,6 +8,7 @@ that of the circle of its area, D = sqrt(4 A / pi); its aspect ratio is its heig
 width (cell extents); its position is its area centroid.
 """
 import math
+import os
 from collections import deque
 
 import numpy
@@ -85,3 +86,30 @@ def coloured_above(initial_height, ids, heights, interface, middle=None):
     if not coloured:
         raise ValueError("no coloured particle (none started below the interface)")
     return sum(h > middle for h in coloured) / len(coloured)
+
+
+def bubble_history(case_path, grid, gas_fraction_field):
+    """[(t, bubble or None)] over a run's written times after 0 that hold `gas_fraction_field`
+    (a DPM's voidFraction, a two-fluid model's alpha.air), on the run's uniform grid."""
+    cells = cell_rows_columns(case_path, grid)
+    shape = (grid.counts[1], grid.counts[0])
+    out = []
+    for name in outputs.times(case_path):
+        if float(name) <= 0 or not os.path.exists(os.path.join(case_path, name, gas_fraction_field)):
+            continue
+        gas = to_map(outputs.field(case_path, name, gas_fraction_field), cells, shape)
+        out.append((float(name), find_bubble(gas, grid.spacing[0], grid.spacing[1])))
+    return out
+
+
+def write_history(path, history, mixing):
+    """A run's bubble (history: [(t, bubble or None)]) and the coloured share above the median
+    height (mixing: {t: share}, where measured) at each written time, as CSV."""
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    with open(path, "w") as f:
+        f.write("t (s),bubble diameter (m),bubble aspect (height/width),bubble centroid height (m),"
+                "coloured fraction above the median height\n")
+        for t, b in history:
+            cells = f"{b['diameter']:.5g},{b['aspect']:.4g},{b['y']:.5g}" if b else ",,"
+            near = [m for s, m in mixing.items() if abs(s - t) < 1e-6]
+            f.write(f"{t:g},{cells},{f'{near[0]:.5g}' if near else ''}\n")

@@ -43,7 +43,8 @@ import tarfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "python"))
-from tfdem.outputs import field, times  # noqa: E402
+from tfdem.case import Case, dict_entry  # noqa: E402
+from tfdem.outputs import OutputError, field, joined_series, pressure_series, probes, times  # noqa: E402
 
 TEMPLATE = os.path.join(HERE, "tfm_bubbling_bed")
 CACHE = os.environ.get("TFDEM_CACHE", os.path.join(HERE, "..", "..", ".cache"))
@@ -166,14 +167,9 @@ def set_control(case, end_time, write_interval):
 
 
 def grid(case):
-    """(nx, ny) of the case's one block."""
-    with open(os.path.join(case, "system/blockMeshDict")) as f:
-        text = f.read()
-    counts = re.search(r"hex\s*\([^)]*\)\s*\(\s*(\S+)\s+(\S+)\s+1\s*\)", text)
-    if not counts:
-        raise MechanismError(f"{case}/system/blockMeshDict: no one-cell-deep hex block")
-    value = lambda v: int(re.search(rf"\n{v[1:]}\s+(\d+);", text).group(1)) if v.startswith("$") else int(v)  # noqa: E731
-    return value(counts.group(1)), value(counts.group(2))
+    """(nx, ny) of the case's cells."""
+    counts = Case(case).grid().counts
+    return counts[0], counts[1]
 
 
 def fluidised_bed_template():
@@ -276,51 +272,30 @@ def bed_theta(alpha, theta, nx, rows):
     return sum(alpha[k] * theta[k] for k in cells) / sum(alpha[k] for k in cells)
 
 
-def postprocessing_series(case, name):
-    """(t, value) rows of a function object's .dat files under postProcessing/<name>."""
-    out = []
-    for root, _, files in os.walk(os.path.join(case, "postProcessing", name)):
-        for file in files:
-            with open(os.path.join(root, file)) as f:
-                out += [tuple(float(v) for v in line.split()[:2]) for line in f if not line.startswith("#")]
-    return sorted(out)
-
-
-def number_in(path, pattern):
-    with open(path) as f:
-        found = re.search(pattern, f.read())
-    if not found:
-        raise MechanismError(f"{path}: no {pattern!r}")
-    return float(found.group(1))
-
-
 def whole_bed_support(case):
     """(t, whole-bed dp / bed weight per area): the area-averaged p on the inlet less the
     outlet's 101325 Pa and the gas column, over the solids' weight (their volume sum alpha_s V,
     less buoyancy) per inlet area; [] for a case without those function objects."""
-    inlet, solids = postprocessing_series(case, "pInlet"), postprocessing_series(case, "solidsVolume")
-    if not inlet or not solids:
+    try:
+        inlet = pressure_series(case, "pInlet")
+        solids = joined_series(case, "solidsVolume", "volFieldValue.dat")
+    except OutputError:
         return []
-    rho_s = number_in(os.path.join(case, "constant/thermophysicalProperties.particles"), r"\n\s*rho\s+([0-9.eE+-]+);")
-    rho_g = number_in(os.path.join(case, "constant/thermophysicalProperties.air"), r"\n\s*rho\s+([0-9.eE+-]+);")
-    height = number_in(os.path.join(case, "Allprepare"), r"\nheight=([0-9.eE+-]+)")
-    area = number_in(glob.glob(os.path.join(case, "postProcessing/pInlet/*/*.dat"))[0], r"# Area\s*:\s*([0-9.eE+-]+)")
-    weight = solids[-1][1] * (rho_s - rho_g) * 9.81 / area
-    return [(t, (p - 101325 - rho_g * 9.81 * height) / weight) for t, p in inlet]
+    c = Case(case)
+    rho_s, rho_g = (float(dict_entry(c.file("constant", f"thermophysicalProperties.{phase}"), "rho"))
+                    for phase in ("particles", "air"))
+    lo, hi = c.mesh_bounds()
+    g = c.gravity_magnitude()
+    weight = solids[-1][1][0] * (rho_s - rho_g) * g / ((hi[0] - lo[0]) * (hi[2] - lo[2]))
+    return [(t, (p - 101325 - rho_g * g * (hi[1] - lo[1])) / weight) for t, p in inlet]
 
 
-def probes(case):
-    """(t, dp) of the pressure probes: p(bottom cell centre) - p(20 cm above)."""
-    out = []
-    for root, _, files in os.walk(os.path.join(case, "postProcessing", "pressure")):
-        for name in files:
-            with open(os.path.join(root, name)) as f:
-                for line in f:
-                    if line.startswith("#"):
-                        continue
-                    values = line.split()
-                    out.append((float(values[0]), float(values[1]) - float(values[2])))
-    return sorted(out)
+def pressure_drop(case):
+    """(t, dp) of the pressure probes: p(bottom cell centre) - p(20 cm above); [] without them."""
+    try:
+        return [(t, values[0] - values[1]) for t, values in probes(case)]
+    except OutputError:
+        return []
 
 
 def write_measures(case, path, write_interval):
@@ -334,7 +309,7 @@ def write_measures(case, path, write_interval):
     end = float(written[-1])
     late = [name for name in written if float(name) >= end / 2 - 1e-9]
     cell_mean = [sum(alpha[name][k] for name in late) / len(late) for k in range(nx * ny)]
-    dp = probes(case)
+    dp = pressure_drop(case)
     support = whole_bed_support(case)
     os.makedirs(os.path.dirname(path), exist_ok=True)
     with open(path, "w", newline="") as f:
@@ -375,7 +350,7 @@ def summary(name):
     dp_var = sum(r[6] ** 2 + (r[5] - dp_mean) ** 2 for r in late) / len(late)
     return {"end": end, "from": end / 2, "lateral_std": mean(1), "departure_std": mean(2),
             "min_alpha": min(r[3] for r in late), "theta": mean(4), "dp_mean": dp_mean, "dp_std": math.sqrt(dp_var),
-            "support": mean(7) if len(late[0]) > 7 else math.nan}
+            "support": mean(7)}
 
 
 def report_text():

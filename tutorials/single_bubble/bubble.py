@@ -72,17 +72,7 @@ def jet_window(case):
 
 def bubble_history(case_path, root=HERE):
     """[(t, bubble or None)] over the run's written times (after 0)."""
-    case = Case(root)
-    grid = case.grid()
-    cells = bubble.cell_rows_columns(case_path, grid)
-    shape = (grid.counts[1], grid.counts[0])
-    out = []
-    for name in outputs.times(case_path):
-        if float(name) <= 0 or not os.path.exists(os.path.join(case_path, name, "voidFraction")):
-            continue
-        eps = bubble.to_map(outputs.field(case_path, name, "voidFraction"), cells, shape)
-        out.append((float(name), bubble.find_bubble(eps, grid.spacing[0], grid.spacing[1])))
-    return out
+    return bubble.bubble_history(case_path, Case(root).grid(), "voidFraction")
 
 
 def rise_velocity(history, start, end):
@@ -113,18 +103,6 @@ def mixing(case_path, root=HERE):
         heights = [x[1] for x in p["position"]]
         out.append((t, bubble.coloured_above(initial, p["id"], heights, interface, statistics.median(heights))))
     return out
-
-
-def write_results(path, history, mixed):
-    """The run's bubble and mixing at each written time, as tfm.py writes the TFM's."""
-    os.makedirs(os.path.dirname(path), exist_ok=True)
-    with open(path, "w") as f:
-        f.write("t (s),bubble diameter (m),bubble aspect (height/width),bubble centroid height (m),"
-                "coloured fraction above the median height\n")
-        for t, b in history:
-            cells = f"{b['diameter']:.5g},{b['aspect']:.4g},{b['y']:.5g}" if b else ",,"
-            near = [m for s, m in mixed.items() if abs(s - t) < 1e-6]
-            f.write(f"{t:g},{cells},{f'{near[0]:.5g}' if near else ''}\n")
 
 
 def report(root=HERE):
@@ -158,7 +136,7 @@ def report(root=HERE):
             last = max(mixed)
             print(f"  coloured lower half above the bed's median height at {last:g} s:"
                   f" {100 * mixed[last]:.2f} % (0: layers apart, 50: mixed)")
-        write_results(os.path.join(root, "results", law + ".csv"), history, mixed)
+        bubble.write_history(os.path.join(root, "results", law + ".csv"), history, mixed)
     if not histories:
         print("no runs yet")
         return

@@ -130,35 +130,26 @@ def median_and_coloured_above(solids, coloured, dy):
 
 
 def history(path):
-    """[(t, bubble or None, mixing)] over the written times after 0."""
+    """([(t, bubble or None)], {t: mixing}) over the written times after 0."""
     grid = Case(path).grid()
+    bubbles = bubble.bubble_history(path, grid, "alpha.air")
     cells = bubble.cell_rows_columns(path, grid)
     shape = (grid.counts[1], grid.counts[0])
-    out = []
-    for name in outputs.times(path):
-        if float(name) <= 0 or not os.path.exists(os.path.join(path, name, "alpha.coloured")):
-            continue
-        gas = bubble.to_map(outputs.field(path, name, "alpha.air"), cells, shape)
-        found = bubble.find_bubble(gas, grid.spacing[0], grid.spacing[1])
-        solids, coloured = (bubble.to_map(outputs.field(path, name, f), cells, shape)
+    written = {float(name): name for name in outputs.times(path)}
+    mixing = {}
+    for t, _ in bubbles:
+        solids, coloured = (bubble.to_map(outputs.field(path, written[t], f), cells, shape)
                             for f in ("alpha.particles", "alpha.coloured"))
-        _, mixed = median_and_coloured_above(solids, coloured, grid.spacing[1])
-        out.append((float(name), found, mixed))
-    return out
+        mixing[t] = median_and_coloured_above(solids, coloured, grid.spacing[1])[1]
+    return bubbles, mixing
 
 
 def report(run_path, results):
-    rows = history(run_path)
-    os.makedirs(os.path.dirname(results), exist_ok=True)
-    with open(results, "w") as f:
-        f.write("t (s),bubble diameter (m),bubble aspect (height/width),bubble centroid height (m),"
-                "coloured fraction above the median height\n")
-        for t, b, mixed in rows:
-            cells = (f"{b['diameter']:.5g},{b['aspect']:.4g},{b['y']:.5g}" if b else ",,")
-            f.write(f"{t:g},{cells},{mixed:.5g}\n")
-    for t, b, mixed in rows:
+    bubbles, mixing = history(run_path)
+    bubble.write_history(results, bubbles, mixing)
+    for t, b in bubbles:
         print(f"t = {t:5.2f} s  " + (f"bubble {100 * b['diameter']:5.1f} cm, aspect {b['aspect']:.2f}, at "
-                                      f"{100 * b['y']:5.1f} cm" if b else "no bubble") + f"; mixing {mixed:.3f}")
+                                      f"{100 * b['y']:5.1f} cm" if b else "no bubble") + f"; mixing {mixing[t]:.3f}")
     print(f"wrote {os.path.relpath(results, HERE)}")
 
 
