@@ -14,6 +14,7 @@ from collections import deque
 import numpy
 
 from tfdem import outputs
+from tfdem.frontdoor import write_text_atomic
 
 BUBBLE_GAS_FRACTION = 0.8
 
@@ -105,11 +106,11 @@ def bubble_history(case_path, grid, gas_fraction_field):
 def write_history(path, history, mixing):
     """A run's bubble (history: [(t, bubble or None)]) and the coloured share above the median
     height (mixing: {t: share}, where measured) at each written time, as CSV."""
+    lines = ["t (s),bubble diameter (m),bubble aspect (height/width),bubble centroid height (m),"
+             "coloured fraction above the median height"]
+    for t, b in history:
+        cells = f"{b['diameter']:.5g},{b['aspect']:.4g},{b['y']:.5g}" if b else ",,"
+        near = [m for s, m in mixing.items() if abs(s - t) < 1e-6]
+        lines.append(f"{t:g},{cells},{f'{near[0]:.5g}' if near else ''}")
     os.makedirs(os.path.dirname(path), exist_ok=True)
-    with open(path, "w") as f:
-        f.write("t (s),bubble diameter (m),bubble aspect (height/width),bubble centroid height (m),"
-                "coloured fraction above the median height\n")
-        for t, b in history:
-            cells = f"{b['diameter']:.5g},{b['aspect']:.4g},{b['y']:.5g}" if b else ",,"
-            near = [m for s, m in mixing.items() if abs(s - t) < 1e-6]
-            f.write(f"{t:g},{cells},{f'{near[0]:.5g}' if near else ''}\n")
+    write_text_atomic(path, "\n".join(lines) + "\n")
