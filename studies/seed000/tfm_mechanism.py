@@ -44,6 +44,7 @@ import tarfile
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "python"))
 from tfdem.case import Case, dict_entry  # noqa: E402
+from tfdem.errors import Reported  # noqa: E402
 from tfdem.outputs import OutputError, field, joined_series, pressure_series, probes, times  # noqa: E402
 
 TEMPLATE = os.path.join(HERE, "tfm_bubbling_bed")
@@ -412,7 +413,7 @@ def main(argv=None):
         for future in concurrent.futures.as_completed(futures):
             try:
                 print(f"{future.result()}: done", flush=True)
-            except MechanismError as error:
+            except (MechanismError, Reported) as error:
                 print(error, file=sys.stderr, flush=True)
                 failed += 1
     report()

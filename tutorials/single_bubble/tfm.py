@@ -30,6 +30,7 @@ import sys
 
 from tfdem import bubble, outputs
 from tfdem.case import Case
+from tfdem.errors import Reported
 from tfdem.packing import packing_settings
 from tfdem.run import run
 
@@ -161,10 +162,14 @@ def main(argv=None):
     if args.refine < 1:
         parser.error(f"--refine must be a whole number of 1 or more, got {args.refine}")
     run_path, results = paths(args.refine)
-    if args.command == "run":
-        prepare(run_path, args.refine)
-        run(["twoPhaseEulerFoam"], run_path, "log.twoPhaseEulerFoam")
-    report(run_path, results)
+    try:
+        if args.command == "run":
+            prepare(run_path, args.refine)
+            run(["twoPhaseEulerFoam"], run_path, "log.twoPhaseEulerFoam")
+        report(run_path, results)
+    except Reported as error:
+        print(f"tfm.py: {error}", file=sys.stderr)
+        return 1
     return 0
 
 
