@@ -473,8 +473,9 @@ VoidFractionOptions read_void_fraction(ConfigSection &section) {
   }
   o.diffusion_bandwidth = read_length(
       section, {"diffusion_bandwidth", "m",
-                "the particle fields smoothed by diffusion to this bandwidth b (3-6 particle diameters; leave out for "
-                "none)"});
+                "each particle's fields spread to a Gaussian of this bandwidth b, variance b^2/2 per axis on every grid "
+                "(the mapping into cells of h gives h^2/12 of it, diffusion the rest; 3-6 particle diameters; leave out "
+                "for none)"});
   o.particle_field_block = read_block(
       section, {"particle_field_block", "",
                 "gas cells per particle-field cell along x, y, z: the particle fields on coarser cells, interpolated "

@@ -80,6 +80,18 @@ std::vector<double> transposed(const std::vector<double> &matrix, int n) {
 
 }  // namespace
 
+double deposition_variance(double spacing, int block) {
+  // Fine cell m's centre sits (m + 1/2) / k - 1/2 block widths from block 0's centre and takes
+  // max(0, 1 - |offset|) / k of that block (block_interpolation); nothing beyond one block away.
+  const double width = block * spacing;
+  double interpolation = 0.0;
+  for (int m = -block; m < 2 * block; ++m) {
+    const double offset = (m + 0.5) / block - 0.5;
+    interpolation += std::max(0.0, 1.0 - std::abs(offset)) / block * offset * offset;
+  }
+  return width * width / 12.0 + interpolation * width * width;
+}
+
 std::vector<double> neumann_heat_kernel(int n, double spacing, double time) {
   const std::size_t size = static_cast<std::size_t>(n);
   std::vector<double> basis(size * size);  // v_k(i), orthonormal: row k
@@ -132,14 +144,25 @@ ParticleFieldFilter::ParticleFieldFilter(const CartesianGrid &grid, double bandw
     const bool spreads = bandwidth > 0.0 && blocks > 1;
     if (!spreads && k == 1) continue;
     std::vector<double> matrix;
+    if (spreads) {
+      const double deposited = deposition_variance(grid_.spacing[a], k);
+      pseudo_time_[a] = (bandwidth * bandwidth / 2.0 - deposited) / 2.0;
+      if (pseudo_time_[a] < 0.0) {
+        std::ostringstream why;
+        why << "is narrower than the cells along " << kAxisName[a] << ": mapping into cells of " << k * grid_.spacing[a]
+            << " m already spreads a particle by a variance of " << deposited << " m^2 there, more than b^2 / 2; give a "
+            << "bandwidth of at least " << std::sqrt(2.0 * deposited) << " m (3-6 particle diameters), or leave it out";
+        throw std::invalid_argument(refusal(bandwidth, why.str()));
+      }
+    }
     if (!spreads)
       matrix = block_estimate_kernel(n, k);
     else if (k == 1)
-      matrix = neumann_heat_kernel(n, grid_.spacing[a], pseudo_time());
+      matrix = neumann_heat_kernel(n, grid_.spacing[a], pseudo_time_[a]);
     else
       matrix = product(block_interpolation(n, k),
-                       product(neumann_heat_kernel(blocks, k * grid_.spacing[a], pseudo_time()), block_sums(n, k),
-                               blocks, blocks, n),
+                       product(neumann_heat_kernel(blocks, k * grid_.spacing[a], pseudo_time_[a]),
+                               block_sums(n, k), blocks, blocks, n),
                        n, blocks, n);
     adjoint_[a] = banded(transposed(matrix, n), n);
     forward_[a] = banded(std::move(matrix), n);

@@ -9,15 +9,15 @@ cells holding one sphere (eps_g = 0.21) and empty ones (eps_g = 1). Spread, the 
   (FixedBed.spread_pressure_drop: the slab's solids and drag convolved with the Gaussian of
   bandwidth b, from seed 000 eq. 30 in tfdem.physics, the gas momentum of UEqn.H integrated),
   within 0.5 % at 0.3 and 1.0 m/s;
-  (measured 2026-12-04: +0.02 % and -0.13 %);
+  (measured 2026-12-07: +0.06 % and -0.06 %);
 - inside the bed, farther than 2.5 b from both edges (the Gaussian's tail there e^-6.25 =
   0.2 %), the pressure gradient is Ergun's within 0.5 % (two more probes at cell centres,
-  6.3 cm apart; measured -0.12 % and -0.22 %): the spread keeps a uniform bed's drag on cells
+  6.3 cm apart; measured 2026-12-07: -0.10 % and -0.20 %): the spread keeps a uniform bed's drag on cells
   smaller than a particle;
 - and what the spread costs against Ergun over the whole bed, named: the spheres within ~b of the
   bed's two sharp edges see the spread edge's gas fraction and the slower gas beyond it, and the
   drag spread beyond the edges acts on gas of eps ~ 1 (model -10.4 % at both velocities, about
-  -1.4 % per mm of b for this 10.2 cm bed; measured -10.4 % and -10.5 %): 8-11 % below Ergun,
+  -1.4 % per mm of b for this 10.2 cm bed; measured -10.37 % and -10.42 %): 8-11 % below Ergun,
   not within 0.5 % of it. Unspread, the same cells give 4.6 Pa against Ergun's 60.8 (-92 %).
 
 A bandwidth wider than the column, or a particle-field block that does not divide the mesh,

@@ -1,6 +1,7 @@
 // The particle-field filter. Diffusion smoothing (Sun & Xiao 2015): the spread of one particle
-// against the heat kernel by hand, the lattice's exact variance, reflecting walls by the method
-// of images, conservation, and the refusals of a bandwidth that is not one. The block estimate:
+// against the heat kernel by hand, the lattice's exact variance, the total spread b^2 / 2 of the
+// mapping and diffusion on every grid and in blocks, reflecting walls by the method of images,
+// conservation, and the refusals of a bandwidth that is not one or is narrower than the cells. The block estimate:
 // its weights by hand, a linear field kept, sums kept with and without a spread, the adjoint,
 // and the refusal of a block that does not divide the grid.
 #include <gtest/gtest.h>
@@ -27,6 +28,10 @@ CartesianGrid grid(double h, int nx, int ny, int nz) {
   return g;
 }
 
+// The bandwidth of the diffusion alone, sqrt(b^2 - h^2 / 6): the filter leaves h^2 / 12 of the
+// variance b^2 / 2 to the mapping into cells of h (a particle's place in its cell, uniform).
+double diffusion_bandwidth(double b, double h) { return std::sqrt(b * b - h * h / 6); }
+
 // One unit at cell `source` of a line of n cells (h = 1 mm), spread with bandwidth b.
 std::vector<double> spread_line(int n, int source, double b) {
   std::vector<double> values(n, 0.0), scratch;
@@ -36,11 +41,14 @@ std::vector<double> spread_line(int n, int source, double b) {
 }
 
 // Largest |spread - Gaussian| over the peak of the Gaussian, for one unit in the middle of a
-// line of cells h = 1 mm, bandwidth b: the Gaussian's cell value is h exp(-x^2/b^2) / (sqrt(pi) b).
+// line of cells h = 1 mm, bandwidth b: the Gaussian of the diffusion's bandwidth d has the cell
+// value h exp(-x^2/d^2) / (sqrt(pi) d).
 double line_error_against_gaussian(double b) {
   const int n = 401, middle = 200;
   const std::vector<double> v = spread_line(n, middle, b);
-  const double h = 1e-3, peak = h / (std::sqrt(kPi) * b);
+  const double h = 1e-3;
+  b = diffusion_bandwidth(b, h);
+  const double peak = h / (std::sqrt(kPi) * b);
   double worst = 0.0;
   for (int i = 0; i < n; ++i) {
     const double x = (i - middle) * h;
@@ -51,15 +59,16 @@ double line_error_against_gaussian(double b) {
 
 TEST(ParticleFieldFilter, OneParticleSpreadsAsTheHeatKernel) {
   // 41^3 cells of 1 mm, bandwidth 8 mm (sigma = b/sqrt(2) = 5.7 cells, the walls 3.6 sigma away):
-  // the cell values against the Gaussian (pi b^2)^(-3/2) exp(-r^2/b^2) V_c. The lattice kernel
-  // per axis is exp(-2T/h^2) I_i(2T/h^2) with T/h^2 = 16; at the centre it exceeds the
-  // Gaussian by 1/(8 * 2T/h^2) = 0.4 % (the Bessel function's asymptotic series), 1.2 % in 3-D.
+  // the cell values against the Gaussian (pi d^2)^(-3/2) exp(-r^2/d^2) V_c of the diffusion's
+  // bandwidth d (diffusion_bandwidth). The lattice kernel per axis is exp(-2T/h^2) I_i(2T/h^2)
+  // with T/h^2 = 16 less 1/24; at the centre it exceeds the Gaussian by 1/(8 * 2T/h^2) = 0.4 %
+  // (the Bessel function's asymptotic series), 1.2 % in 3-D.
   const int n = 41, c = 20;
-  const double h = 1e-3, b = 8e-3;
+  const double h = 1e-3, b = diffusion_bandwidth(8e-3, h);
   const CartesianGrid g = grid(h, n, n, n);
   std::vector<double> values(g.cell_count(), 0.0), scratch;
   values[g.flat(c, c, c)] = 1.0;
-  ParticleFieldFilter(g, b).apply(values.data(), 1, scratch);
+  ParticleFieldFilter(g, 8e-3).apply(values.data(), 1, scratch);
   const double peak = h * h * h / std::pow(kPi * b * b, 1.5);
   double worst = 0.0;
   for (int k = 0; k < n; ++k)
@@ -78,14 +87,15 @@ TEST(ParticleFieldFilter, ApproachesTheGaussianAsTheCellsShrink) {
   // it by about 4 (the centre's 1/(8 * 2T/h^2): 0.39 %, 0.098 %, 0.024 %).
   const double e8 = line_error_against_gaussian(8e-3), e16 = line_error_against_gaussian(16e-3),
                e32 = line_error_against_gaussian(32e-3);
-  EXPECT_NEAR(e8, 1.0 / (8 * 32), 0.2e-3);
+  EXPECT_NEAR(e8, 1.0 / (8 * (32 - 1.0 / 12)), 0.2e-3);
   EXPECT_NEAR(e8 / e16, 4.0, 0.2);
   EXPECT_NEAR(e16 / e32, 4.0, 0.2);
 }
 
-TEST(ParticleFieldFilter, VarianceIsExactlyHalfTheBandwidthSquared) {
-  // The lattice heat kernel's variance is 2T = b^2 / 2 for any h (a random walk of rate 1/h^2
-  // per direction and steps h); the walls are 200 cells (35 sigma) away.
+TEST(ParticleFieldFilter, DiffusionLeavesTheCellsTheirTwelfth) {
+  // The lattice heat kernel's variance is 2T for any h (a random walk of rate 1/h^2 per
+  // direction and steps h): the diffusion alone spreads a cell's content by b^2 / 2 - h^2 / 12;
+  // the walls are 200 cells (35 sigma) away.
   const int n = 401, middle = 200;
   const double h = 1e-3, b = 8e-3;
   const std::vector<double> v = spread_line(n, middle, b);
@@ -93,7 +103,42 @@ TEST(ParticleFieldFilter, VarianceIsExactlyHalfTheBandwidthSquared) {
   for (int i = 0; i < n; ++i) mean += v[i] * (i - middle) * h;
   for (int i = 0; i < n; ++i) variance += v[i] * std::pow((i - middle) * h - mean, 2);
   EXPECT_NEAR(mean, 0.0, 1e-15);
-  EXPECT_NEAR(variance / (b * b / 2), 1.0, 1e-12);
+  EXPECT_NEAR(variance / (b * b / 2 - h * h / 12), 1.0, 1e-12);
+}
+
+// A particle's total spread along a line of cells of h in blocks of k, bandwidth b: one unit
+// mapped to the cell holding its centre, filtered, and the second moment of the result about
+// the centre, averaged over `places` centres spread evenly across a block in the line's middle
+// (the mapping as the coupling does it, with no formula for the cells' share).
+double total_spread(double h, int k, double b, int places) {
+  const int n = static_cast<int>(std::lround(0.6 / h));  // 0.6 m: the walls > 10 b away
+  const int first = (n / 2 / k) * k;                        // the block in the middle
+  const ParticleFieldFilter filter(grid(h, n, 1, 1), b, {k, 1, 1});
+  std::vector<double> values(n), scratch;
+  double sum = 0.0;
+  for (int m = 0; m < places; ++m) {
+    const double x = (first + (m + 0.5) * k / places) * h;
+    std::fill(values.begin(), values.end(), 0.0);
+    values[static_cast<int>(std::floor(x / h))] = 1.0;
+    filter.apply(values.data(), 1, scratch);
+    for (int i = 0; i < n; ++i) sum += values[i] * std::pow((i + 0.5) * h - x, 2);
+  }
+  return sum / places;
+}
+
+TEST(ParticleFieldFilter, TotalSpreadIsHalfTheBandwidthSquaredOnEveryGrid) {
+  // b = 2.4 cm on cells of 0.5, 1 and 2 cm, and on 0.5 cm cells in blocks of 2 and 4: the
+  // mapping and the diffusion together spread a particle by b^2 / 2 = 2.88 cm^2 per axis on
+  // every grid (the average over 2000 places across a block, whose even sampling errs by
+  // (k h / 2000)^2 / 12, below 1e-8 of it).
+  const double b = 0.024, target = b * b / 2;
+  for (const double h : {0.005, 0.01, 0.02})
+    EXPECT_NEAR(total_spread(h, 1, b, 2000) / target, 1.0, 1e-7) << "cells of " << h << " m";
+  for (const int k : {2, 4}) EXPECT_NEAR(total_spread(0.005, k, b, 2000) / target, 1.0, 1e-7) << "blocks of " << k;
+  // Diffusion to b^2 / 2 on top of the mapping would make the coarse grid's kernel wider:
+  // by (2 cm)^2 / 12 = 0.33 cm^2, 12 % of b^2 / 2.
+  const double uncompensated = total_spread(0.02, 1, std::sqrt(b * b + 0.02 * 0.02 / 6), 2000);
+  EXPECT_NEAR(uncompensated - target, 0.02 * 0.02 / 12, 1e-9);
 }
 
 TEST(ParticleFieldFilter, WallsReflectAsTheMethodOfImages) {
@@ -166,6 +211,12 @@ TEST(ParticleFieldFilter, RefusesABandwidthThatIsNotOne) {
   const std::string wide = refusal(g, 0.2);
   EXPECT_NE(wide.find("larger than the domain along x (0.15 m)"), std::string::npos) << wide;
   EXPECT_EQ(refusal(g, 0.05), "");  // wider than the one-cell depth (1 cm): that axis is not spread
+  // Narrower than the cells: mapping into 2 cm cells spreads by (2 cm)^2 / 12 = 3.33e-5 m^2,
+  // more than b^2 / 2 for b = 8 mm; the least bandwidth is sqrt(2 * 3.33e-5) = 8.16 mm
+  const std::string narrow = refusal(grid(0.02, 10, 10, 1), 0.008);
+  EXPECT_NE(narrow.find("narrower than the cells along x"), std::string::npos) << narrow;
+  EXPECT_NE(narrow.find("at least 0.00816497 m"), std::string::npos) << narrow;
+  EXPECT_EQ(refusal(grid(0.02, 10, 10, 1), 0.0082), "");
 }
 
 TEST(ParticleFieldFilter, WithoutBandwidthOrBlockChangesNothing) {
