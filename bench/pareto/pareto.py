@@ -10,8 +10,8 @@ time, the averaging window and its points: each point changes only what it lists
 POINT_KEYS). The template is a tutorial's name or the path of any bed case (one `tfdem new`
 wrote, say; relative to the sweep file); `packing` (optional) names the packed bed to start
 from and the script that makes it, relative to tutorials/, else the template's own data file
-(`tfdem pack` pours it); `dp_height` (optional) the height of Delta p's upper row above the
-bed's bottom row (default 20 cm, or the column when shorter: tfdem.bed). Points are runs of
+(`tfdem pack` pours it); `dp_height` (optional) the height of Delta p's upper level above the
+bed's floor (default 20 cm, or the column when shorter: tfdem.bed). Points are runs of
 tfdem.batch (tfdem.bedstats.BedRun): resumable, skipped when done, `--jobs` side by side
 (default 1: wall times are only comparable when nothing else runs; with 2 the processor time
 is the fairer cost). Runs and the report go beside the sweep file, in a folder of its name.

@@ -1,14 +1,16 @@
 """A fluidized bed's measured signals, the same for every run that compares beds (the seed 000
 study, the speed-against-error sweeps, `tfdem stats`): the solids fraction at every cell
-centre, p on the bed's bottom row of cells (the first above a distributor plate's cell zone)
-and on the row DP_HEIGHT above it (Delta p at 20 cm, seed 000 Fig. 3; another height for
-another column), and the coupler's particle statistics.
+centre, p at two fixed heights, the bed's floor (the inlet, or the top of a distributor
+plate's cell zone) and DP_HEIGHT above it (Delta p at 20 cm above the inlet, seed 000 Fig. 3;
+another height for another column), and the coupler's particle statistics.
 
 write_bed_probes() adds the function objects to a case's controlDict; BedOutputs reads what
 they wrote, joined over resumes, as arrays. Any layout: one layer, a few cells deep or 3-D.
 The maps are sampled at every cell centre and averaged over the depth (the z cells of each
-x, y column); p is sampled at every cell centre of the two rows (across the width and the
-depth), and Delta p is the difference of the two rows' means (cross-section averages).
+x, y column). p is sampled at every cell centre of the rows either side of each fixed height
+(across the width and the depth); p at the height is the linear interpolation of those rows'
+cross-section means (level_weights), so Delta p is taken between the same heights on every
+grid.
 """
 import itertools
 import re
@@ -33,9 +35,9 @@ ZONES_BELOW_BED = ("distributor", "windbox")
 
 
 def _row_span(case):
-    """(bottom, highest): the heights of the bed's bottom row of cell centres (the first above
-    the plate's or the windbox's cell zone, when the case has one) and of the column's highest
-    row."""
+    """(floor, first, highest): the bed's floor (the top of the plate's or the windbox's cell
+    zone, when the case has one, else the mesh's bottom) and the heights of the bed's first row
+    of cell centres above it and of the column's highest row."""
     grid = case.grid()
     floor = grid.origin[1]
     for zone in ZONES_BELOW_BED:
@@ -44,26 +46,52 @@ def _row_span(case):
             break
         except CaseError:
             continue
-    return floor + 0.5 * grid.spacing[1], grid.origin[1] + (grid.counts[1] - 0.5) * grid.spacing[1]
+    return floor, floor + 0.5 * grid.spacing[1], grid.origin[1] + (grid.counts[1] - 0.5) * grid.spacing[1]
 
 
-def pressure_rows(case, dp_height=DP_HEIGHT):
-    """(bottom, top): the heights of the two rows of cell centres Delta p is taken between,
-    the bed's bottom row and the row dp_height above it. CaseError when that row is outside
-    the mesh."""
-    bottom, highest = _row_span(case)
-    if not 0 < dp_height <= highest - bottom + 1e-9:
-        raise CaseError(f"{case.path}: a Delta p height of {dp_height:g} m puts its upper row outside the column "
-                        f"(the bed's bottom row is at y = {bottom:g} m, the highest at {highest:g} m); give a height "
-                        f"above 0 and up to {highest - bottom:g} m")
-    return bottom, bottom + dp_height
+def pressure_levels(case, dp_height=DP_HEIGHT):
+    """(bottom, top): the fixed heights (m) Delta p is taken between, the same on every grid:
+    the bed's floor (seed 000 Fig. 3: "at 20 cm above the inlet boundary") and dp_height above
+    it. CaseError when the upper one is above the column's highest row of cell centres."""
+    floor, first, highest = _row_span(case)
+    if not 0 < dp_height <= highest - floor + 1e-9:
+        raise CaseError(f"{case.path}: a Delta p height of {dp_height:g} m puts its upper level outside the column "
+                        f"(the bed's floor is at y = {floor:g} m, the highest row of cell centres at {highest:g} m); "
+                        f"give a height above 0 and up to {highest - floor:g} m")
+    return floor, floor + dp_height
 
 
 def default_dp_height(case):
     """DP_HEIGHT (seed 000's 20 cm) when the column has room for it, else the column's whole
-    height above the bed's bottom row (the whole bed's Delta p)."""
-    bottom, highest = _row_span(case)
-    return min(DP_HEIGHT, highest - bottom)
+    height from the bed's floor to its highest row of cell centres (the whole bed's Delta p)."""
+    floor, _, highest = _row_span(case)
+    return min(DP_HEIGHT, highest - floor)
+
+
+def level_weights(case, level):
+    """[(row height, weight)]: p at the fixed height `level` (m) as a combination of the
+    cross-section means of rows of cell centres, linear in y: a level on a row is that row; one
+    between two rows, their linear interpolation; one between the bed's floor and its first
+    row, the linear extrapolation of the first two rows above the floor (a plate's rows below
+    it are not used: its resistance would enter). CaseError when the level is outside the
+    rows, or the bed has one row only."""
+    grid = case.grid()
+    floor, first, highest = _row_span(case)
+    h = grid.spacing[1]
+    tolerance = 1e-9 * max(1.0, abs(level))
+    if not floor - tolerance <= level <= highest + tolerance:
+        raise CaseError(f"{case.path}: p at y = {level:g} m: outside the bed's rows of cell centres (floor {floor:g} m, "
+                        f"highest row {highest:g} m)")
+    if highest - first < 0.5 * h:
+        raise CaseError(f"{case.path}: the bed has one row of cells above its floor: p at a fixed height needs two")
+    rows = (level - first) / h  # rows above the first
+    below = min(max(int(numpy.floor(rows + 1e-9)), 0), int(round((highest - first) / h)) - 1)
+    fraction = rows - below
+    if abs(fraction) <= 1e-9:
+        return [(first + below * h, 1.0)]
+    if abs(fraction - 1) <= 1e-9:
+        return [(first + (below + 1) * h, 1.0)]
+    return [(first + below * h, 1.0 - fraction), (first + (below + 1) * h, fraction)]
 
 
 def section_points(grid, height):
@@ -77,12 +105,20 @@ def _points_block(points):
     return "\n".join(f"            ({x:.10g} {y:.10g} {z:.10g})" for x, y, z in points)
 
 
+def pressure_rows(case, dp_height=DP_HEIGHT):
+    """The heights of the rows of cell centres whose p gives p at both levels (pressure_levels,
+    level_weights), lowest first."""
+    heights = {round(y, 12) for level in pressure_levels(case, dp_height) for y, _ in level_weights(case, level)}
+    return sorted(heights)
+
+
 def write_bed_probes(case, field_interval, pressure_interval, tfm=False, dp_height=DP_HEIGHT):
     """Replace the functions of `case`'s controlDict by the bed probes: every field of the maps
     at every cell centre (every depth's) every field_interval, p at every cell centre of the
-    two rows (pressure_rows) every pressure_interval (s). The coupled solver samples every so
-    many gas steps; twoPhaseEulerFoam (adjustable step) at run times."""
+    rows either side of the two levels (pressure_rows) every pressure_interval (s). The coupled
+    solver samples every so many gas steps; twoPhaseEulerFoam (adjustable step) at run times."""
     grid = case.grid()
+    levels = pressure_levels(case, dp_height)
     rows = [point for y in pressure_rows(case, dp_height) for point in section_points(grid, y)]
     fields = TFM_FIELDS if tfm else COUPLED_FIELDS
     if tfm:
@@ -93,7 +129,8 @@ def write_bed_probes(case, field_interval, pressure_interval, tfm=False, dp_heig
     across = "" if grid.counts[2] == 1 else f" (each across its {grid.counts[2]} cells of depth)"
     block = (
         "functions\n{\n"
-        f"    // tfdem.bed: every cell centre (maps) and two rows of cells {dp_height:g} m apart{across} (Delta p)\n"
+        f"    // tfdem.bed: every cell centre (maps); the rows of cells either side of y = {levels[0]:g} and "
+        f"{levels[1]:g} m{across} (Delta p)\n"
         f"    {FIELDS}\n    {{\n        type probes; libs (\"libsampling.so\");\n"
         f"        {control(field_interval)}\n        fields ({' '.join(fields)});\n"
         f"        probeLocations\n        (\n{_points_block(grid.centres())}\n        );\n    }}\n"
@@ -132,30 +169,39 @@ def depth_average(values, columns, cells):
     return sums / counts
 
 
-def section_pressure_drop(p, heights, rows):
-    """Delta p from samples (samples, probes) of p on two rows of cells: `heights` (one a
-    probe) names each probe's row, `rows` the (bottom, top) heights; the bottom row's mean
-    minus the top row's (each a cross-section average)."""
+def section_pressure_drop(p, heights, levels):
+    """Delta p from samples (samples, probes) of p on rows of cells: `heights` (one a probe)
+    names each probe's row, `levels` the (bottom, top) levels as level_weights; p at each
+    level is its rows' cross-section means so weighted, Delta p the bottom's less the top's.
+    ValueError naming the row a level needs and the run did not probe."""
     p, heights = numpy.asarray(p, dtype=float), numpy.asarray(heights, dtype=float)
     if p.ndim != 2 or p.shape[1] != heights.size:
         raise ValueError(f"pressure samples of shape {p.shape}: expected (samples, {heights.size}), one value a probe")
-    means = []
-    for level in rows:
-        on_row = numpy.abs(heights - level) <= 1e-9 * max(1.0, abs(level))
-        if not on_row.any():
-            raise ValueError(f"no pressure probe on the row at y = {level:g} m")
-        means.append(p[:, on_row].mean(axis=1))
-    return means[0] - means[1]
+    at_level = []
+    for weights in levels:
+        value = numpy.zeros(p.shape[0])
+        for row, weight in weights:
+            on_row = numpy.abs(heights - row) <= 1e-9 * max(1.0, abs(row))
+            if not on_row.any():
+                raise ValueError(f"no pressure probe on the row at y = {row:g} m (probed: "
+                                 f"{', '.join(f'{y:g}' for y in sorted(set(heights.round(12))))} m): the run probed "
+                                 "other rows than its Delta p levels need (runs prepared before 2026-12-07 probed "
+                                 "the bed's first row of cell centres and the row 20 cm above it); prepare and run "
+                                 "it again")
+            value += weight * p[:, on_row].mean(axis=1)
+        at_level.append(value)
+    return at_level[0] - at_level[1]
 
 
 class BedOutputs:
     """What a bed run wrote, as arrays: field_t and solids (samples x map cells, each map cell an
-    x, y column averaged over the depth), p_t and dp (the two rows' cross-section means), theta
+    x, y column averaged over the depth), p_t and dp (p at the floor less p dp_height above it,
+    default default_dp_height; levels: the two heights), theta
     (the granular temperature per map cell; None when the run did not sample it), and for the
     coupled solver the contact and drag force maps and the particle statistics. depth_cells:
     the cells across the depth the maps average (1 for a bed one cell deep)."""
 
-    def __init__(self, case, tfm=False):
+    def __init__(self, case, tfm=False, dp_height=None):
         self.case, self.tfm = case, tfm
         self.grid = case.grid()
         nx, ny = self.grid.counts[0], self.grid.counts[1]
@@ -184,7 +230,8 @@ class BedOutputs:
         p = joined_series(path, PRESSURE, "p")
         heights = [location[1] for location in probe_locations(path, PRESSURE)]
         self.p_t = numpy.array([r[0] for r in p])
-        self.dp = section_pressure_drop([r[1] for r in p], heights, (min(heights), max(heights)))
+        self.levels = pressure_levels(case, dp_height or default_dp_height(case))
+        self.dp = section_pressure_drop([r[1] for r in p], heights, [level_weights(case, y) for y in self.levels])
 
     def mean_height(self):
         """(t, mean particle height in m): the particles' (coupled) or the solids' centroid

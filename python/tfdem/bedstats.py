@@ -6,18 +6,20 @@ resumable like a study's runs, and reported over a window with honest errors:
                      [--ranks R] [--gas whole|split] [--root DIR]
 
 Reported, each over the window with its standard error from batch means (tfdem.accuracy):
-Delta p between the bed's bottom row of cells (the first above a distributor plate) and the
-row `--dp-height` above it (default seed 000's 20 cm, or the whole column when it is
-shorter), the fluctuation of its `--band` means and the faster rest (the gas-step jitter),
+Delta p between the bed's floor (the inlet, or the top of a distributor plate) and the height
+`--dp-height` above it (default seed 000's 20 cm, or the column's highest row of cells when it
+is shorter), each p the linear interpolation of the rows of cell centres either side (at the
+floor, extrapolated from the first two rows above it), so the same heights on every grid; the
+fluctuation of its `--band` means and the faster rest (the gas-step jitter),
 the mean particle height, the dominant frequency of Delta p (error: the spectral resolution
 1 / window), and Delta p as a share of the bed's weight per area (a fluidized bed's gas
-carries the weight of the particles above the bottom row). The batch-means error holds when
+carries the weight of the particles above the floor). The batch-means error holds when
 a batch is much longer than Delta p's integrated autocorrelation time tau (tfdem.stats);
 tau and the error it implies, std sqrt(tau / N), are reported beside it, and a batch shorter
 than 5 tau is named. Writes ROOT/bed_statistics.json and ROOT/bed_statistics.png (Delta p and
 the mean height against time, the time-averaged solids-fraction map). Any layout: a bed more
-than one cell deep has its map averaged over the depth and its Delta p rows averaged over the
-cross-section (width and depth), which the report says.
+than one cell deep has its map averaged over the depth and the rows of its Delta p averaged over
+the cross-section (width and depth), which the report says.
 """
 import argparse
 import json
@@ -28,11 +30,10 @@ import numpy
 
 from tfdem.accuracy import scalar_metrics
 from tfdem.batch import STATUS, BatchError, CaseRun, run_batch
-from tfdem.bed import PRESSURE, BedOutputs, default_dp_height, pressure_rows, write_bed_probes
+from tfdem.bed import BedOutputs, default_dp_height, pressure_levels, write_bed_probes
 from tfdem.case import Case, CaseError
 from tfdem.frontdoor import add_debug_option, doing, run_command, save_figure_atomic, write_text_atomic
 from tfdem.inputs import non_negative_number, positive_count, positive_number
-from tfdem.outputs import probe_locations
 from tfdem.packing import STAMP, verify_stamp
 from tfdem.run import DEFAULT_GAS_LAYOUT, GAS_LAYOUTS, command, prepare_gas, run
 from tfdem.stats import integrated_autocorrelation_time
@@ -138,17 +139,17 @@ def correlation_check(t, y, start, end, batch):
             "batches_long_enough": bool(batch >= TAU_BATCHES * tau_seconds)}
 
 
-def statistics(run_case, start, end, batch, band):
-    """The report's numbers (a dict) of a finished run's case."""
-    outputs = BedOutputs(run_case)
+def statistics(run_case, start, end, batch, band, dp_height=None):
+    """The report's numbers (a dict) of a finished run's case, Delta p over dp_height (default
+    tfdem.bed.default_dp_height) from the bed's floor."""
+    outputs = BedOutputs(run_case, dp_height=dp_height)
     t, height = outputs.mean_height()
     metrics = scalar_metrics(outputs.p_t, outputs.dp, t, height, start, end, batch, band)
     weight = bed_weight_per_area(run_case)
-    bottom, top = _probe_rows(run_case)
     names = {"dp20_mean": "dp_mean", "dp20_std": "dp_fluctuation", "dp20_jitter": "dp_jitter",
              "mean_height": "mean_height", "dp20_frequency": "dp_frequency"}
-    out = {"window": [start, end], "batch": batch, "band": band, "dp_rows": [bottom, top],
-           "dp_height": top - bottom, "weight_per_area": weight, "map": map_description(outputs)}
+    out = {"window": [start, end], "batch": batch, "band": band, "dp_levels": list(outputs.levels),
+           "dp_height": outputs.levels[1] - outputs.levels[0], "weight_per_area": weight, "map": map_description(outputs)}
     out.update({names[k]: v for k, v in metrics.items()})
     out["dp_over_weight"] = {"value": metrics["dp20_mean"]["value"] / weight,
                              "error": metrics["dp20_mean"]["error"] / weight}
@@ -164,12 +165,6 @@ def map_description(outputs):
     return f"the solids fraction of each x, y column of gas cells averaged over the depth ({outputs.depth_cells} cells)"
 
 
-def _probe_rows(case):
-    """(bottom, top) heights of the Delta p rows the run's probes sampled."""
-    heights = sorted({round(p[1], 12) for p in probe_locations(case.path, PRESSURE)})
-    return heights[0], heights[-1]
-
-
 def describe(s):
     """The report's lines."""
     def pm(key, scale=1.0, unit=""):
@@ -177,14 +172,14 @@ def describe(s):
         return f"{v['value'] * scale:.4g} ± {v['error'] * scale:.2g}{unit}"
     c = s["correlation"]
     lines = [f"window {s['window'][0]:g}-{s['window'][1]:g} s, batches of {s['batch']:g} s (± one standard error)",
-             f"  Delta p (y = {s['dp_rows'][0]:.4g} to {s['dp_rows'][1]:.4g} m, {s['dp_height'] * 100:.3g} cm): "
+             f"  Delta p (y = {s['dp_levels'][0]:.4g} to {s['dp_levels'][1]:.4g} m, {s['dp_height'] * 100:.3g} cm): "
              f"{pm('dp_mean', unit=' Pa')}, {pm('dp_over_weight')} of the bed's weight per area "
              f"({s['weight_per_area']:.4g} Pa)",
              f"  its fluctuation ({1000 * s['band']:g} ms means): {pm('dp_fluctuation', unit=' Pa')}; "
              f"faster jitter {pm('dp_jitter', unit=' Pa')}",
              f"  dominant frequency {pm('dp_frequency', unit=' Hz')}",
              f"  mean particle height {pm('mean_height', 100, ' cm')}",
-             f"  time-averaged map: {s['map']}; Delta p between the two rows' means over the cross-section"]
+             f"  time-averaged map: {s['map']}; Delta p between p at the two heights, each from its rows' means over the cross-section"]
     if c["tau_seconds"] is None:
         lines.append(f"  Delta p's correlation time: not measurable in this window ({c['note']}); the batch-means "
                      "errors are unchecked: run longer")
@@ -250,7 +245,7 @@ def _arguments(argv):
     parser.add_argument("--batch", type=seconds, default=BATCH, help=f"batch-means batches, s (default {BATCH:g})")
     parser.add_argument("--band", type=seconds, default=BAND, help=f"Delta p's band, s (default {BAND:g})")
     parser.add_argument("--dp-height", type=positive_number("a height in m above 0"), default=None,
-                        help="m between the two Delta p rows (default 0.2, or the column when shorter)")
+                        help="m from the bed's floor to Delta p's upper level (default 0.2, or the column when shorter)")
     parser.add_argument("--ranks", type=positive_count("the run's MPI ranks"), default=1)
     parser.add_argument("--gas", default=DEFAULT_GAS_LAYOUT, choices=sorted(GAS_LAYOUTS),
                         help="whole (on every rank) or split")
@@ -279,12 +274,12 @@ def _stats(argv):
         print(f"tfdem stats: batches of {batch:g} s (the window holds fewer than {FEWEST_BATCHES} of "
               f"{args.batch:g} s)")
     if args.dp_height is not None:
-        pressure_rows(Case(template), args.dp_height)
+        pressure_levels(Case(template), args.dp_height)
     bed = BedRun("statistics", root, template, args.ranks, args.gas, args.dp_height)
     if not run_batch([bed], args.end_time, jobs=1):
         return 1
     with doing("reading the run's outputs in", root):
-        s, outputs = statistics(bed.case, start, end, batch, args.band)
+        s, outputs = statistics(bed.case, start, end, batch, args.band, args.dp_height)
     report = os.path.join(root, "bed_statistics.json")
     with doing("writing", report):
         write_text_atomic(report, json.dumps(s, indent=1))

@@ -216,3 +216,128 @@ def spread_ratio_range(dof, level=0.9):
     it says sigma was misjudged."""
     low, high = (1 - level) / 2, (1 + level) / 2
     return math.sqrt(chi_square_quantile(low, dof) / dof), math.sqrt(chi_square_quantile(high, dof) / dof)
+
+
+def _incomplete_beta(x, a, b):
+    """The regularized incomplete beta function I_x(a, b), 0 <= x <= 1, by its continued
+    fraction (modified Lentz; Press et al., Numerical Recipes, 3rd ed., sec. 6.4), on the side
+    of x where it converges fast."""
+    if x <= 0.0 or x >= 1.0:
+        return 0.0 if x <= 0.0 else 1.0
+    if x > (a + 1.0) / (a + b + 2.0):
+        return 1.0 - _incomplete_beta(1.0 - x, b, a)
+    front = math.exp(math.lgamma(a + b) - math.lgamma(a) - math.lgamma(b) + a * math.log(x) + b * math.log1p(-x)) / a
+    tiny = 1e-300
+    c, d = 1.0, 1.0 - (a + b) * x / (a + 1.0)
+    d = 1.0 / (d if abs(d) > tiny else tiny)
+    f = d
+    for m in range(1, 500):
+        for numerator in (m * (b - m) * x / ((a + 2 * m - 1) * (a + 2 * m)),
+                          -(a + m) * (a + b + m) * x / ((a + 2 * m) * (a + 2 * m + 1))):
+            d = 1.0 + numerator * d
+            d = 1.0 / (d if abs(d) > tiny else tiny)
+            c = 1.0 + numerator / c
+            c = c if abs(c) > tiny else tiny
+            f *= c * d
+        if abs(c * d - 1.0) < 1e-15:
+            break
+    return front * f
+
+
+def student_t_cdf(t, dof):
+    """P(T <= t) for Student's t with `dof` (> 0, not necessarily whole) degrees of freedom:
+    1 - I_{dof / (dof + t^2)}(dof / 2, 1 / 2) / 2 for t >= 0, symmetric about 0."""
+    tail = 0.5 * _incomplete_beta(dof / (dof + t * t), 0.5 * dof, 0.5)
+    return 1.0 - tail if t >= 0 else tail
+
+
+def student_t_quantile(p, dof):
+    """The p-quantile of Student's t with `dof` degrees of freedom (bisection of
+    student_t_cdf to 1e-12)."""
+    if not 0.0 < p < 1.0:
+        raise ValueError(f"a quantile needs 0 < p < 1, not {p}")
+    low, high = -1.0, 1.0
+    while student_t_cdf(low, dof) > p:
+        low *= 2.0
+    while student_t_cdf(high, dof) < p:
+        high *= 2.0
+    while high - low > 1e-12 * max(1.0, abs(high)):
+        middle = 0.5 * (low + high)
+        if student_t_cdf(middle, dof) < p:
+            low = middle
+        else:
+            high = middle
+    return 0.5 * (low + high)
+
+
+def welch_difference(a, b):
+    """mean(a) - mean(b) of two sets of independent realizations, its standard error
+    sqrt(s_a^2 / n_a + s_b^2 / n_b) and the Welch-Satterthwaite degrees of freedom (Welch,
+    Biometrika 34 (1947) 28-35): {"mean", "error", "dof"}. ValueError with fewer than two
+    values in a set, or when neither set varies."""
+    a, b = [float(v) for v in a], [float(v) for v in b]
+    if len(a) < 2 or len(b) < 2:
+        raise ValueError(f"{len(a)} and {len(b)} realizations: a difference with its error needs two of each")
+    va, vb = numpy.var(a, ddof=1) / len(a), numpy.var(b, ddof=1) / len(b)
+    if va + vb == 0:
+        raise ValueError("neither set of realizations varies: no error to test against")
+    dof = (va + vb) ** 2 / (va ** 2 / (len(a) - 1) + vb ** 2 / (len(b) - 1))
+    return {"mean": float(numpy.mean(a) - numpy.mean(b)), "error": float(math.sqrt(va + vb)), "dof": float(dof)}
+
+
+def equivalence_test(a, b, tolerance, alpha=0.05):
+    """Two one-sided tests (Schuirmann, J. Pharmacokinet. Biopharm. 15 (1987) 657-680) that the
+    means of two sets of realizations a and b differ by less than `tolerance` (> 0, in their
+    unit): H0 |mu_a - mu_b| >= tolerance is rejected at level alpha when both t = (d +
+    tolerance) / e and (tolerance - d) / e exceed Student's 1 - alpha quantile (Welch's d, e and
+    dof: welch_difference), that is when the 1 - 2 alpha interval d -+ t e lies inside
+    (-tolerance, tolerance). Returns {"mean", "error", "dof", "tolerance", "p" (the larger
+    one-sided p), "interval" (the 1 - 2 alpha one), "equivalent"}. Failing to find a
+    difference is not equivalence; this test is the one that can show it."""
+    if not tolerance > 0:
+        raise ValueError(f"an equivalence tolerance must be above 0, not {tolerance}")
+    d = welch_difference(a, b)
+    lower = 1.0 - student_t_cdf((d["mean"] + tolerance) / d["error"], d["dof"])
+    upper = student_t_cdf((d["mean"] - tolerance) / d["error"], d["dof"])
+    half = student_t_quantile(1.0 - alpha, d["dof"]) * d["error"]
+    p = max(lower, upper)
+    return dict(d, tolerance=float(tolerance), p=float(p), interval=[d["mean"] - half, d["mean"] + half],
+                equivalent=bool(p < alpha))
+
+
+def grid_convergence(h, phi, safety=1.25):
+    """Richardson extrapolation and the grid convergence index of three grids (Celik, Ghia,
+    Roache, Freitas, Coleman and Raad, J. Fluids Eng. 130 (2008) 078001, eq. 1-10), h the
+    representative cell sizes and phi the values, finest first (h_1 < h_2 < h_3; the ratios
+    r_21 = h_2 / h_1 and r_32 = h_3 / h_2 may differ). The apparent order p solves
+    p = |ln|e_32 / e_21| + ln((r_21^p - s) / (r_32^p - s))| / ln r_21, s = sign(e_32 / e_21),
+    e_21 = phi_2 - phi_1 (fixed-point iteration); phi_ext = (r_21^p phi_1 - phi_2) / (r_21^p -
+    1); GCI_fine = safety |e_21 / phi_1| / (r_21^p - 1). s < 0 is oscillatory convergence
+    (Celik's note: the GCI then says less). Returns {"order", "extrapolated", "relative_error",
+    "extrapolated_error", "gci_fine", "oscillatory"}; ValueError when two grids give the same
+    value (no order) or the iteration does not settle."""
+    (h1, h2, h3), (f1, f2, f3) = [float(v) for v in h], [float(v) for v in phi]
+    if not 0 < h1 < h2 < h3:
+        raise ValueError(f"cell sizes {h}: give three, finest first, each coarser than the last")
+    r21, r32 = h2 / h1, h3 / h2
+    e21, e32 = f2 - f1, f3 - f2
+    if e21 == 0 or e32 == 0:
+        raise ValueError(f"values {phi}: two grids agree exactly, no order of convergence")
+    s = math.copysign(1.0, e32 / e21)
+    order = abs(math.log(abs(e32 / e21))) / math.log(r21)
+    for _ in range(1000):
+        ratio = (r21 ** order - s) / (r32 ** order - s)
+        if ratio <= 0:
+            raise ValueError(f"values {phi} on cells {h}: the apparent order has no solution")
+        new = abs(math.log(abs(e32 / e21)) + math.log(ratio)) / math.log(r21)
+        if abs(new - order) < 1e-12:
+            order = new
+            break
+        order = new
+    else:
+        raise ValueError(f"values {phi} on cells {h}: the apparent order did not settle")
+    factor = r21 ** order - 1.0
+    extrapolated = (r21 ** order * f1 - f2) / factor
+    return {"order": order, "extrapolated": extrapolated, "relative_error": abs(e21 / f1),
+            "extrapolated_error": abs((extrapolated - f1) / extrapolated),
+            "gci_fine": safety * abs(e21 / f1) / factor, "oscillatory": s < 0}

@@ -80,7 +80,7 @@ class Record:
         os.makedirs(folder, exist_ok=True)
         with open(os.path.join(folder, META), "w") as f:
             json.dump(self.meta, f, indent=1)
-        _write_csv(os.path.join(folder, PRESSURE), ["t (s)", "dp 20 cm (Pa): p(bottom row) - p(row 20 cm above)"],
+        _write_csv(os.path.join(folder, PRESSURE), ["t (s)", "dp 20 cm (Pa): p(inlet) - p(20 cm above it)"],
                    zip(self.p_t, self.dp), ("{:.6g}", "{:.6g}"))
         if self.tfm:
             _write_csv(os.path.join(folder, PARTICLES), ["t (s)", "solids mean height (m)"],

@@ -14,12 +14,15 @@ the answers by hand:
   (symmetric about D / 2), so the depth-averaged solids fraction of row j is
   0.6 - 0.5 y_j / 0.16: 0.584375 at y = 5 mm, 0.115625 at 155 mm, whatever the depth. The
   front cells alone would give 0.1 (1/2 - 1/(2 n_z)) less: 0.0333 less at n_z = 3.
-- Delta p: the bed's bottom row is y = 15 mm (the first above the empty windbox row tfdem new
-  puts below a bed fed through its whole bottom), the column's highest 155 mm (20 cm do not
-  fit: 14 cm). p on the bottom row 101625 + 40 z / D + 10 sin(2 pi 5 t) Pa, on the top row
-  101327 + 6 x / 0.04 m Pa: the rows' cross-section means differ by 298 + 40 (1/2) - 6 (1/2)
-  = 315 Pa, the sine averaging out over the window 0.2-1 s (four whole periods); front cells
-  alone: 298 + 20 / n_z - 3. Its dominant frequency 5 Hz (resolution 1 / 0.8 s).
+- Delta p: the bed's floor is y = 10 mm (above the empty windbox row tfdem new puts below a
+  bed fed through its whole bottom), its first rows of cell centres 15 and 25 mm, the
+  column's highest 155 mm (20 cm do not fit: the upper level is that row, 14.5 cm above the
+  floor). p on the first row 101625 + 40 z / D + 10 sin(2 pi 5 t) Pa, on the second 20 Pa
+  less, on the top row 101327 + 6 x / 0.04 m Pa. The cross-section means: 101645 + sine at
+  15 mm, 20 less at 25 mm, so 101655 + sine extrapolated linearly to the floor (half a cell
+  below the first row); 101330 at 155 mm: Delta p = 325 Pa, the sine averaging out over the
+  window 0.2-1 s (four whole periods); the front cells alone would give 305 + 20 / n_z.
+  Its dominant frequency 5 Hz (resolution 1 / 0.8 s).
 - the weight per area: ten spheres of each size, sum 2498.8 (9.81) pi d^3 / 6 / (0.04 D);
   for one size of 2 mm one layer deep (D = 2 mm): 10 (2498.8) (9.81) (4.18879e-9)
   / (0.04 (0.002)) = 12.835 Pa.
@@ -40,7 +43,9 @@ from tfdem.bedstats import describe, plot, statistics
 
 failures = []
 WIDTH, HEIGHT, CELL = 0.04, 0.16, 0.01
-BOTTOM, TOP = 0.015, 0.155
+# m: the bed's floor (above a windbox row of 1 cm), its first two rows of cell centres and the
+# column's highest row, Delta p's upper level (the column is shorter than 20 cm)
+FLOOR, BOTTOM, SECOND, TOP = 0.010, 0.015, 0.025, 0.155
 START, END, BATCH, BAND = 0.2, 1.0, 0.2, 0.05
 NINE_SIZES = [0.0012 + 0.0001 * k for k in range(9)]
 LAYOUTS = {  # name: (depth, diameters, engine, cells across the depth, resumed)
@@ -77,6 +82,7 @@ def hand_outputs(case, depth, nz, diameters, resumed):
     dz = depth / nz
     cells = [(x, y, z) for z in centres(nz, dz) for y in centres(16, CELL) for x in centres(4, CELL)]
     bottom = [(x, BOTTOM, z) for z in centres(nz, dz) for x in centres(4, CELL)]
+    second = [(x, SECOND, z) for z in centres(nz, dz) for x in centres(4, CELL)]
     top = [(x, TOP, z) for z in centres(nz, dz) for x in centres(4, CELL)]
 
     def eps(x, y, z):
@@ -84,6 +90,7 @@ def hand_outputs(case, depth, nz, diameters, resumed):
 
     def pressure(t, wrong=0.0):
         return ([101625 + 40 * z / depth + 10 * math.sin(2 * math.pi * 5 * t) + wrong for _, _, z in bottom]
+                + [101605 + 40 * z / depth + 10 * math.sin(2 * math.pi * 5 * t) + wrong for _, _, z in second]
                 + [101327 + 6 * x / WIDTH for x, _, _ in top])
 
     field_t = [round(0.05 * k, 10) for k in range(1, 21)]
@@ -99,12 +106,12 @@ def hand_outputs(case, depth, nz, diameters, resumed):
         for field in ("voidFraction", "contactForceByWeight", "dragForceByWeight", "granularTemperature"):
             value = {"voidFraction": eps}.get(field, lambda x, y, z: 1.0)
             write_probes(case, FIELDS, field, cells, [(t, [value(*c) for c in cells]) for t in pick(field_t)], start)
-        write_probes(case, PRESSURE, "p", bottom + top,
+        write_probes(case, PRESSURE, "p", bottom + second + top,
                      [(t, pressure(t, wrong if t > 0.5 + 1e-9 else 0.0)) for t in pick(p_t)], start)
         write_particles_dat(case, [particle_row(t) for t in pick(p_t)], bidisperse, start)
     atoms = [(k + 1, d, 0.02, 0.01 + 0.003 * n, depth / 2) for k, d in enumerate(diameters) for n in range(10)]
     write_data_file(case.file("bed.data"), atoms, ((0, 0, 0), (WIDTH, HEIGHT, depth)))
-    return cells, bottom + top
+    return cells, bottom + second + top
 
 
 def check_layout(root, name, depth, diameters, engine, nz, resumed):
@@ -116,7 +123,8 @@ def check_layout(root, name, depth, diameters, engine, nz, resumed):
     text = open(case.file("system", "controlDict")).read()
     rounded = lambda points: sorted(tuple(round(v, 9) for v in p) for p in points)
     check(f"{name}: the map probes at every cell centre, every depth's", probe_points(text, FIELDS) == rounded(cells))
-    check(f"{name}: the Delta p probes at every cell of the two rows, across the width and depth",
+    check(f"{name}: the Delta p probes at every cell of the three rows (the floor's two, the top's), across the "
+          "width and depth",
           probe_points(text, PRESSURE) == rounded(rows))
     s, outputs = statistics(case, START, END, BATCH, BAND)
     expected_map = numpy.array([0.6 - 0.5 * y / HEIGHT for y in centres(16, CELL)])
@@ -124,8 +132,11 @@ def check_layout(root, name, depth, diameters, engine, nz, resumed):
     check(f"{name}: the map is (rows, columns) = (16, 4)", average.shape == (16, 4), str(average.shape))
     check(f"{name}: the map averaged over the depth (0.584375 at 5 mm ... 0.115625 at 155 mm)",
           numpy.allclose(average, expected_map[:, None], atol=1e-12), f"({average[0, 0]:.6f} ... {average[-1, 0]:.6f})")
-    close(f"{name}: Delta p between the rows' cross-section means, 315 Pa", s["dp_mean"]["value"], 315.0, 1e-6)
-    check(f"{name}: Delta p rows at 15 and 155 mm", numpy.allclose(s["dp_rows"], [BOTTOM, TOP]), str(s["dp_rows"]))
+    # cross-section means: 101645 Pa at 15 mm, 101625 at 25 mm, so 101655 extrapolated to the
+    # floor at 10 mm (half a cell below the first row: + 20 / 2); 101330 at 155 mm
+    close(f"{name}: Delta p from the floor (extrapolated) to the top row, 325 Pa", s["dp_mean"]["value"], 325.0, 1e-6)
+    check(f"{name}: Delta p levels at 10 and 155 mm", numpy.allclose(s["dp_levels"], [FLOOR, TOP]),
+          str(s["dp_levels"]))
     check(f"{name}: dominant frequency 5 Hz within the spectral resolution", abs(s["dp_frequency"]["value"] - 5.0)
           <= s["dp_frequency"]["error"], f"({s['dp_frequency']['value']:.4g} +- {s['dp_frequency']['error']:.3g} Hz)")
     close(f"{name}: mean particle height 2 cm", s["mean_height"]["value"], 0.02)

@@ -6,8 +6,9 @@ worked out by hand or from a closed form (no simulation):
   sigma^2 tau / N), the autocorrelation and Sokal's window (by hand), the integrated
   autocorrelation time of white noise (1) and AR(1) ((1 + phi) / (1 - phi)), chi-square
   quantiles against the tables;
-- tfdem.bed: Delta p at 20 cm from the row probes (also through BedOutputs on a hand-made
-  case), the mirror mean, pairwise and cross L1, the noise floor, the permutation test;
+- tfdem.bed: Delta p at 20 cm from the row probes, extrapolated to the inlet and
+  interpolated between rows (also through BedOutputs on a hand-made case; an old layout
+  refused), the mirror mean, pairwise and cross L1, the noise floor, the permutation test;
 - the study's record (written and read back, a missing file or window named) and report.py's
   ratio_numbers on hand-made records;
 - headline.py's Fig. 8 numbers (axis profile, corners, mirror L1), its pairs table and the
@@ -27,7 +28,8 @@ from tfdem.bed import (BedOutputs, cross_l1, l1_noise_floor, l1_permutation_test
                        section_pressure_drop, write_bed_probes)
 from tfdem.case import Case
 from tfdem.stats import (autocorrelation, blocking_curve, chi_square_quantile, difference, ensemble,
-                         integrated_autocorrelation_time, sokal_window, spread_ratio_range)
+                         equivalence_test, grid_convergence, integrated_autocorrelation_time, sokal_window,
+                         spread_ratio_range, student_t_cdf, student_t_quantile, welch_difference)
 
 STUDY = os.path.join(STUDIES, "seed000")
 sys.path.insert(0, STUDY)
@@ -221,13 +223,71 @@ def check_chi_square():
           and abs(low - math.sqrt(3.940 / 10)) < 0.005, f"{low} {high}")
 
 
+def check_student_t_and_equivalence():
+    # closed forms: 1 degree of freedom (Cauchy) 1/2 + atan(t) / pi; 2: 1/2 + t / (2 sqrt(2 + t^2))
+    cauchy = max(abs(student_t_cdf(t, 1) - (0.5 + math.atan(t) / math.pi)) for t in (-7.0, -0.3, 0.0, 1.1, 40.0))
+    two = max(abs(student_t_cdf(t, 2) - (0.5 + t / (2 * math.sqrt(2 + t * t)))) for t in (-5.0, -0.4, 0.7, 3.0))
+    check("Student's t CDF against its closed forms at 1 and 2 degrees of freedom", cauchy < 1e-13 and two < 1e-13,
+          f"({cauchy:.1e}, {two:.1e})")
+    # tables: t(0.95; 3) = 2.353, t(0.95; 6) = 1.943, t(0.975; 10) = 2.228, t(0.95; 30) = 1.697
+    table = ((0.95, 3, 2.353), (0.95, 6, 1.943), (0.975, 10, 2.228), (0.95, 30, 1.697))
+    worst = max(abs(student_t_quantile(p, dof) - value) for p, dof, value in table)
+    check("Student's t quantiles within the tables' 0.0005", worst < 0.0005, f"(worst {worst:.5f})")
+    # Welch by hand: [1, 2, 3, 4] (var 5/3, / 4) and [2, 4, 6] (var 4, / 3): d = -1.5,
+    # e = sqrt(5/12 + 4/3) = sqrt(1.75), dof = 1.75^2 / ((5/12)^2 / 3 + (4/3)^2 / 2) = 3.23466
+    w = welch_difference([1, 2, 3, 4], [2, 4, 6])
+    check("Welch's difference, error and degrees of freedom by hand", close(w["mean"], -1.5)
+          and close(w["error"], math.sqrt(1.75)) and abs(w["dof"] - 3.0625 / (25 / 144 / 3 + 16 / 9 / 2)) < 1e-12, str(w))
+    # TOST by hand at 2 degrees of freedom: [1, -1] and [1.2, -0.8], both of variance 2: d =
+    # -0.2, e = sqrt(2), dof 2. Tolerance 3: the one-sided p's 1 - F((3 - 0.2) / e) = 0.09314
+    # and F((-0.2 - 3) / e) = 0.07600 (F the closed form above): p = 0.0931, not equivalent at
+    # 0.05; the 90 % interval -0.2 -+ 2.91999 e reaches past -3.
+    f2 = lambda t: 0.5 + t / (2 * math.sqrt(2 + t * t))
+    e = equivalence_test([1, -1], [1.2, -0.8], 3.0)
+    expected_p = max(1 - f2(2.8 / math.sqrt(2)), f2(-3.2 / math.sqrt(2)))
+    check("equivalence test: p by hand (0.0931), not equivalent", abs(e["p"] - expected_p) < 1e-12
+          and abs(expected_p - 0.09314) < 1e-5 and not e["equivalent"], str(e))
+    check("equivalence test: the 90 % interval by hand (t(0.95; 2) = 2.91999)",
+          abs(e["interval"][0] - (-0.2 - 2.919986 * math.sqrt(2))) < 1e-5 and e["interval"][0] < -3, str(e["interval"]))
+    wide = equivalence_test([1, -1], [1.2, -0.8], 10.0)
+    check("equivalence test: a wide tolerance is met, its interval inside it", wide["equivalent"]
+          and -10 < wide["interval"][0] and wide["interval"][1] < 10, str(wide))
+    check("equivalence test: a tolerance of 0 refused", raises(equivalence_test, [1, 2], [1, 3], 0.0) is not None)
+
+
+def check_grid_convergence():
+    # Celik et al. (2008), J. Fluids Eng. 130, 078001, Table 1, its first column: r_21 = 1.5,
+    # r_32 = 1.333, phi = 6.063, 5.972, 5.863; published p = 1.53, phi_ext = 6.1685,
+    # e_a = 1.5 %, e_ext = 1.7 %, GCI_fine = 2.2 %
+    g = grid_convergence([1.0, 1.5, 2.0], [6.063, 5.972, 5.863])
+    check("GCI: Celik et al. 2008 Table 1's column 1", round(g["order"], 2) == 1.53
+          and round(g["extrapolated"], 4) == 6.1685 and round(100 * g["relative_error"], 1) == 1.5
+          and round(100 * g["extrapolated_error"], 1) == 1.7 and round(100 * g["gci_fine"], 1) == 2.2
+          and not g["oscillatory"], str(g))
+    # phi = 1 + h^2 on h = 1, 2, 4: order 2, extrapolated 1 exactly; GCI 1.25 (3 / 2) / 3
+    g = grid_convergence([1.0, 2.0, 4.0], [2.0, 5.0, 17.0])
+    check("GCI: a second-order sequence by hand", abs(g["order"] - 2) < 1e-10 and abs(g["extrapolated"] - 1) < 1e-10
+          and abs(g["gci_fine"] - 1.25 * 1.5 / 3) < 1e-10, str(g))
+    check("GCI: oscillation named", grid_convergence([1.0, 2.0, 4.0], [1.0, 1.5, 1.2])["oscillatory"])
+    check("GCI: two grids that agree exactly refused", raises(grid_convergence, [1, 2, 4], [1.0, 1.0, 2.0]) is not None)
+
+
 def check_maps():
     heights = [0.05] * 3 + [0.25] * 3
+    on_rows = ([(0.05, 1.0)], [(0.25, 1.0)])
     check("Delta p: bottom row mean minus upper row mean",
+          numpy.allclose(section_pressure_drop([[100, 110, 120, 10, 20, 60], [5, 5, 5, 1, 2, 3]], heights, on_rows),
+                         [80, 3]))
+    # p at 0 m extrapolated from the rows at 0.05 and 0.25 m (weights 1.25, -0.25): 1.25 (110)
+    # - 0.25 (30) = 130 and 1.25 (5) - 0.25 (2) = 5.75; the upper level on the upper row
+    check("Delta p: a level extrapolated from two rows",
           numpy.allclose(section_pressure_drop([[100, 110, 120, 10, 20, 60], [5, 5, 5, 1, 2, 3]], heights,
-                                               (0.05, 0.25)), [80, 3]))
+                                               ([(0.05, 1.25), (0.25, -0.25)], [(0.25, 1.0)])), [100, 3.75]))
     check("Delta p: a sample of the wrong width refused",
-          raises(section_pressure_drop, [[1, 2, 3, 4]], heights, (0.05, 0.25)) is not None)
+          raises(section_pressure_drop, [[1, 2, 3, 4]], heights, on_rows) is not None)
+    missing = raises(section_pressure_drop, [[1, 2, 3, 4, 5, 6]], heights, ([(0.15, 1.0)], [(0.25, 1.0)]))
+    check("Delta p: a row the run did not probe named", missing is not None
+          and "no pressure probe on the row at y = 0.15 m (probed: 0.05, 0.25 m)" in missing, str(missing))
     check("mirror mean", numpy.allclose(mirror_mean(numpy.array([[1.0, 2, 3], [4, 0, 6]])), [[2, 2, 2], [5, 0, 5]]))
     maps = [numpy.full((2, 2), v) for v in (0.0, 0.1, 0.3)]
     maps[2][1] = 9.0  # the second row differs wildly: left out with rows = 1
@@ -254,8 +314,11 @@ def write(path, text):
 
 
 def check_bed_outputs(root):
-    """A 3 x 3 grid of 1 x 10 cm cells: the 20 cm row is the third; Delta p read through
-    BedOutputs from hand-written probe files."""
+    """A 3 x 3 grid of 1 x 10 cm cells (rows of centres at 5, 15 and 25 cm): Delta p from the
+    inlet (y = 0) to 20 cm read through BedOutputs from hand-written probe files. By hand: the
+    rows' means 110, 60, 30 Pa (then 8, 5, 2): p at 0 extrapolated from the first two rows,
+    1.5 (110) - 0.5 (60) = 135 (9.5); p at 20 cm midway between the second and third, 45 (3.5):
+    Delta p 90 and 6 Pa."""
     case_dir = os.path.join(root, "bed_case")
     write(os.path.join(case_dir, "system", "blockMeshDict"),
           "convertToMeters 1;\nvertices\n(\n    (0 0 0) (0.03 0 0) (0.03 0.3 0) (0 0.3 0)\n"
@@ -265,19 +328,27 @@ def check_bed_outputs(root):
     case = Case(case_dir)
     write_bed_probes(case, 0.05, 0.01)
     text = open(case.file("system", "controlDict")).read()
-    check("probes: the upper row 20 cm above the bottom row's centres", "(0.005 0.25 0.005)" in text
-          and "(0.025 0.05 0.005)" in text and "writeInterval 10;" in text)
+    check("probes: the rows either side of the inlet's and 20 cm's levels, 5, 15 and 25 cm", "(0.005 0.25 0.005)" in text
+          and "(0.025 0.05 0.005)" in text and "(0.015 0.15 0.005)" in text and "writeInterval 10;" in text)
     post = os.path.join(case_dir, "postProcessing")
     rows = "".join(f"# Probe {k} ({x} {y} 0.005)\n" for k, (y, x) in enumerate(
-        (y, x) for y in (0.05, 0.25) for x in (0.005, 0.015, 0.025)))
-    write(os.path.join(post, "studyPressure", "0", "p"), rows + "# Time p\n0.01 100 110 120 10 20 60\n0.02 7 8 9 1 2 3\n")
+        (y, x) for y in (0.05, 0.15, 0.25) for x in (0.005, 0.015, 0.025)))
+    write(os.path.join(post, "studyPressure", "0", "p"),
+          rows + "# Time p\n0.01 100 110 120 50 60 70 10 20 60\n0.02 7 8 9 4 5 6 1 2 3\n")
     cells = "".join(f"# Probe {k} ({c[0]} {c[1]} {c[2]})\n" for k, c in enumerate(case.grid().centres()))
     for field in ("voidFraction", "contactForceByWeight", "dragForceByWeight"):
         write(os.path.join(post, "studyFields", "0", field), cells + "# Time\n0.05" + " 0.5" * 9 + "\n")
     write(os.path.join(post, "tfdemParticles", "0", "particles.dat"), "# t\n0.01 10 0.1 0.05 1.0 0.5\n")
     d = BedOutputs(case)
-    check("BedOutputs: Delta p at 20 cm from the two rows", numpy.allclose(d.dp, [80, 6]) and numpy.allclose(d.p_t, [0.01, 0.02]),
-          str(d.dp))
+    check("BedOutputs: Delta p from the inlet to 20 cm, 90 and 6 Pa", numpy.allclose(d.dp, [90, 6])
+          and numpy.allclose(d.p_t, [0.01, 0.02]) and numpy.allclose(d.levels, [0.0, 0.2]), f"{d.dp} {d.levels}")
+    # the same case's layout of before 2026-12-07, two rows at 5 and 25 cm: refused, named
+    rows = "".join(f"# Probe {k} ({x} {y} 0.005)\n" for k, (y, x) in enumerate(
+        (y, x) for y in (0.05, 0.25) for x in (0.005, 0.015, 0.025)))
+    write(os.path.join(post, "studyPressure", "0", "p"), rows + "# Time p\n0.01 100 110 120 10 20 60\n")
+    old = raises(BedOutputs, case)
+    check("BedOutputs: a run probed on the old two rows refused, the fix named", old is not None
+          and "no pressure probe on the row at y = 0.15 m" in old and "prepare and run it again" in old, str(old))
 
 
 def hand_record(name, counts, spacing, maps, tfm=False):
@@ -413,6 +484,8 @@ def main():
     check_blocking()
     check_autocorrelation()
     check_chi_square()
+    check_student_t_and_equivalence()
+    check_grid_convergence()
     check_maps()
     check_bed_outputs(root)
     check_ratio_numbers()
