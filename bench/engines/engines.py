@@ -69,7 +69,7 @@ class HardSphereRun(CaseRun):
         data = os.path.basename(source.dem().read_data())
         case = source.copy_to(self.case.path, extra=(data,))
         self.case = case
-        self.set_status(state="prepared", end_time=end_time)
+        self.set_status(state="preparing", end_time=end_time)  # "prepared" once all of it is done (run_batch)
         case.set_control(endTime=end_time, writeInterval=min(float(source.control("writeInterval")), end_time),
                          startFrom="startTime")
         convert_to_hard_sphere(case)

@@ -77,8 +77,7 @@ void load_into(Script &script, const std::string &file, const std::string &text,
     }
     const std::string &name = c.words[1];
     if (uses_variable(name)) {
-      script.problems.push_back(c.where() + "include '" + name + "': the coupler checks and resumes what a script " +
-                                "includes, and cannot know a name made of variables; write the file name itself");
+      script.commands.push_back(std::move(c));  // kept, not followed: its file is known only when LIGGGHTS runs
     } else if (std::find(open.begin(), open.end(), name) != open.end()) {
       script.problems.push_back(c.where() + "include '" + name + "' includes itself (through " + joined(open) +
                                 "); LIGGGHTS would read it forever: remove the cycle");
@@ -159,6 +158,9 @@ std::vector<std::string> coupled_script_problems(const std::string &file, const 
     if (name == "jump")
       problems.push_back(c.where() + "'jump' in a coupled DEM script: the coupler cannot check or resume what it " +
                          "jumps to, and a coupled script has no loop to run; use 'include' for another file");
+    if (name == "include")  // one named by variables, which load() kept unfollowed
+      problems.push_back(c.where() + "include '" + c.words[1] + "': the coupler checks and resumes what a script " +
+                         "includes, and cannot know a name made of variables; write the file name itself");
     if (is_coupling_fix(c)) coupling_fixes.push_back(c.where().substr(0, c.where().size() - 2));
   }
   if (coupling_fixes.empty())

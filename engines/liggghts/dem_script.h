@@ -38,8 +38,9 @@ std::vector<Command> parse(const std::string &text, const std::string &file = ""
 using ReadFile = std::function<std::string(const std::string &path)>;
 
 // A script with every `include` replaced by the commands of the included file, recursively,
-// in the order LIGGGHTS runs them; `problems` holds what could not be followed (an unreadable
-// or cyclic include, an include named by a variable), each "file:line: message" with the fix.
+// in the order LIGGGHTS runs them; an include named by a variable stays a command, unfollowed
+// (its file is known only as LIGGGHTS runs: a pour's templates); `problems` holds what could
+// not be followed (an unreadable or cyclic include), each "file:line: message" with the fix.
 struct Script {
   std::vector<Command> commands;
   std::vector<std::string> problems;

@@ -286,9 +286,11 @@ def run_batch(runs, end_time, jobs, poll=2.0, report_every=60.0):
         if r.done() and status.get("end_time") == end_time:
             print(f"{r.name}: done ({clock(status.get('wall_seconds', 0))} wall), skipped", flush=True)
             continue
-        if status.get("state") == "new" or not os.path.isdir(r.case.path):
+        if status.get("state") in ("new", "preparing") or not os.path.isdir(r.case.path):
+            # a preparation that failed or was stopped part-way is made again from the start
             print(f"{r.name}: preparing {r.case.path}", flush=True)
             r.prepare(end_time)
+            r.set_status(state="prepared", end_time=end_time)
         elif status.get("end_time") != end_time:
             r.extend(end_time)
             print(f"{r.name}: {end_time_change(status.get('end_time'), end_time, r.done())}", flush=True)
@@ -365,7 +367,7 @@ class VariantRun(CaseRun):
         if os.path.isdir(self.case.path):
             shutil.rmtree(self.case.path)
         self.case = Case(self.root).copy_to(self.case.path, extra=("bed.data",))
-        self.set_status(state="prepared", end_time=end_time)
+        self.set_status(state="preparing", end_time=end_time)  # "prepared" once all of it is done (run_batch)
         self.case.set_control(endTime=end_time, writeInterval=self.write_interval(end_time), startFrom="startTime")
         for key, value in self.settings.items():
             self.case.set_coupling(key, value)

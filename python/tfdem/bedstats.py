@@ -80,7 +80,7 @@ class BedRun(CaseRun):
         refuse_foreign_folder(self.case.path)
         case = Case(self.template).copy_to(self.case.path)
         data = case.particles_file()
-        self.set_status(state="prepared", end_time=end_time)
+        self.set_status(state="preparing", end_time=end_time)  # "prepared" once all of it is done (run_batch)
         case.set_control(endTime=end_time, writeInterval=self.write_interval(end_time), startFrom="startTime",
                          writePrecision=17)
         self.modify(case)

@@ -143,7 +143,7 @@ class Run(CaseRun):
         if os.path.isdir(self.case.path):
             shutil.rmtree(self.case.path)
         Case(self.template).copy_to(self.case.path, extra=("Allprepare", "Allsolve", "0.orig"))
-        self.set_status(state="prepared", end_time=end_time)
+        self.set_status(state="preparing", end_time=end_time)  # "prepared" once all of it is done (run_batch)
         self.case.set_control(endTime=end_time, writeInterval=self.write_interval(end_time), startFrom="startTime",
                               writePrecision=17)
         if self.tfm:

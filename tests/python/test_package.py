@@ -5,18 +5,19 @@ of a hand-made signal, the solid fraction of a slab cutting spheres, a packing.y
 bubble found in a hand-made gas-fraction map, the mixing fraction of a coloured layer."""
 import math
 import os
+import shutil
 import sys
 import tempfile
 
 import numpy
 
-from tfdem.batch import CaseRun, eta_seconds, variants_command_line
+from tfdem.batch import CaseRun, eta_seconds, run_batch, variants_command_line
 from tfdem.bubble import coloured_above, find_bubble
 from tfdem.case import Case, CaseError, Grid, set_yaml_value
 from tfdem.engines import hard_sphere_laws, restitution_of_damping
 from tfdem.liggghts import DemScript, ScriptError
 from tfdem.outputs import OutputError, dump_frames, fix_print, joined_series
-from tfdem.packing import at_rest, jiggle, largest_overlap, packing_settings, script_stiffness, set_atom_types, to_mid_plane
+from tfdem.packing import POUR_SCRIPT, at_rest, jiggle, largest_overlap, packing_settings, script_stiffness, set_atom_types, to_mid_plane
 from tfdem.physics import slab_solid_fraction
 from tfdem.run import RunError, command, decompose, mesh_cells
 from tfdem.stats import batch_means
@@ -209,6 +210,40 @@ def check_jiggle(root):
     check("jiggled: another seed, other velocities", not numpy.allclose(v, velocities(8)))
 
 
+class FlakyPreparation(CaseRun):
+    """A run whose preparation fails part-way the first time (as a pour can), after its
+    folder and status file exist; its 'solver' ends only when the preparation finished."""
+    attempts = 0
+
+    def prepare(self, end_time):
+        FlakyPreparation.attempts += 1
+        if os.path.isdir(self.case.path):
+            shutil.rmtree(self.case.path)
+        write(self.case.file("system", "controlDict"), "endTime 1;\nstartFrom startTime;\n")
+        self.set_status(state="preparing", end_time=end_time)
+        if FlakyPreparation.attempts == 1:
+            raise RuntimeError("the pour failed")
+        write(self.case.file("packed_bed.data"), "atoms\n")
+
+    def command(self):
+        return ["sh", "-c", "test -f packed_bed.data && echo End"]
+
+
+def check_failed_preparation(root):
+    """A batch run again after a preparation that failed part-way prepares the run anew (it
+    was taken as prepared, and the solver then found no packed bed)."""
+    flaky = FlakyPreparation("flaky", os.path.join(root, "flaky"))
+    try:
+        run_batch([flaky], 1.0, 1, poll=0.05)
+        first = "no error"
+    except RuntimeError as e:
+        first = str(e)
+    check("a preparation that fails part-way stops the batch", first == "the pour failed", first)
+    finished = run_batch([flaky], 1.0, 1, poll=0.05)
+    check("run again, the run is prepared anew and finishes", finished and FlakyPreparation.attempts == 2
+          and flaky.done(), f"({finished}, {FlakyPreparation.attempts} preparations, {flaky.status()})")
+
+
 def main():
     root = tempfile.mkdtemp()
     # A run to t = 0.3 killed and resumed from its checkpoint at 0.2: the first segment's rows
@@ -245,6 +280,7 @@ def main():
     check("timing summed over the timed segments", t is not None and t["DEM"] == 4.0 and t["statistics"] == 0.125
           and t["gas"] == 6.0 and t["segments"] == 3 and t["segments_timed"] == 2, str(t))
     check("no timing line: None", CaseRun("none", os.path.join(root, "none")).timing_seconds() is None)
+    check_failed_preparation(root)
 
     # coupling.yaml edited in place: a value, a new key in a section, a new section
     case_dir = os.path.join(root, "case")
@@ -441,6 +477,12 @@ def main():
     check("the script's softest k_n by hand: 900 N/m", script_stiffness(stiff) == 900.0, str(script_stiffness(stiff)))
     write(stiff.file("in.bed"), "units si\n")
     check("a script without k_n: none", script_stiffness(stiff) is None)
+    # the pour's own k_n, which a pour above 2 % overlap is weighed against (in.pour's default)
+    try:
+        pour_kn = DemScript(POUR_SCRIPT).value("${kn}")
+    except ScriptError as e:
+        pour_kn = str(e)
+    check("in.pour reads as a script, its k_n 800 N/m (it is weighed against a run's)", pour_kn == 800.0, str(pour_kn))
 
     check_hard_sphere_laws(root)
     check_contact_definitions(root)

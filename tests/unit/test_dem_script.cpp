@@ -91,6 +91,12 @@ TEST(DemScript, IncludesThatCannotBeFollowedAreProblems) {
   EXPECT_TRUE(has(problems, "b.in:1: include 'a.in' includes itself (through in.bed a.in b.in)"));
   EXPECT_TRUE(has(problems, "in.bed:2: include 'missing.in': cannot read 'missing.in': No such file or directory"));
   EXPECT_TRUE(has(problems, "in.bed:3: include '${part}.in'"));
+  // read alone (a pour's script, whose templates file a variable names), the variable
+  // include is no problem: it stays a command, unfollowed; only the coupler refuses it
+  ASSERT_EQ(s.problems.size(), 2u);
+  const Command *kept = s.first("include");
+  ASSERT_NE(kept, nullptr);
+  EXPECT_EQ(kept->words[1], "${part}.in");
 }
 
 TEST(DemScript, OutputFilesWithLiteralNames) {
