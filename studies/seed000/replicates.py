@@ -21,8 +21,8 @@ import matplotlib.pyplot as plt
 import numpy
 
 from tfdem.bed import cross_l1, l1_noise_floor, l1_permutation_test, mirror_mean, to_grid
-from tfdem.stats import (blocking_curve, difference, ensemble, integrated_autocorrelation_time, spread_ratio_range,
-                         window)
+from tfdem.stats import (blocking_curve, difference, ensemble, equivalence_test, grid_convergence,
+                         integrated_autocorrelation_time, spread_ratio_range, window)
 
 # (key, label, unit, scale of the stored SI value to the unit)
 METRICS = (("dp20", "Δp at 20 cm", "Pa", 1.0), ("mean_height", "mean particle height", "cm", 100.0),
@@ -36,6 +36,14 @@ DIFFERENCE_QUANTITIES = (("dp20", "mean"), ("dp20", "std"), ("mean_height", "mea
 RESOLVED = 2.0  # a difference is resolved when it is at least this many standard errors from zero
 MAP_DEPTH = 0.45  # m: the maps are compared over the cells below this height (the bed)
 REFINEMENTS = ("refine_x", "refine_y")
+# The grid study's quantities and the margins within which two grids give the same value (two
+# one-sided tests at 5 %, tfdem.stats.equivalence_test): Delta p 2 % of its value, the mean
+# particle height half a particle diameter (0.2 cm, the size of the method difference seed 000
+# draws in Fig. 13), the bulk coordination number 0.05 (4 % of the jet bed's 1.2-1.3)
+GRID_QUANTITIES = ("dp20", "mean_height", "bulk_coordination")
+EQUIVALENCE_MARGIN = {"dp20": ("of its value", 0.02), "mean_height": ("m", 0.002), "bulk_coordination": ("", 0.05)}
+MARGIN_TEXT = "Δp ±2 % of its value, mean particle height ±0.2 cm, bulk coordination number ±0.05"
+ALPHA = 0.05
 
 
 def _refinement(spec):
@@ -95,28 +103,63 @@ def interpolation_pairs(runs, configs):
 BLOCK_KEY = "coupling.void_fraction.particle_field_block"
 
 
+def _without_block(spec):
+    coupling = _rest(spec.get("coupling", {}), (BLOCK_KEY,))
+    return {**_rest(spec, REFINEMENTS + ("coupling",)), **({"coupling": coupling} if coupling else {})}
+
+
+def _block_matches(runs, configs, config):
+    """(coarse, fine) of a configuration whose particle field is on blocks of its gas cells:
+    the same run on the blocks' cells and on its own cells, each None when absent."""
+    block = runs[config]["coupling"][BLOCK_KEY]
+    rest, (rx, ry) = _without_block(runs[config]), _refinement(runs[config])
+    match = {_refinement(runs[c]): c for c in configs if c != config and _without_block(runs[c]) == rest
+             and BLOCK_KEY not in runs[c].get("coupling", {})}
+    return match.get((rx // block[0], ry // block[1])), match.get((rx, ry))
+
+
 def separation_triples(runs, configs):
     """(coarse, separated, fine) for each configuration whose particle field is estimated on
     blocks of its gas cells (study.yaml's coupling.void_fraction.particle_field_block): fine is
     the same run without the block, coarse the one whose cells are the blocks (refine_x,
     refine_y divided by the block's k_x, k_y), e.g. (jet_m2, jet_fine_m2_coarse_field,
     jet_fine_m2). Only those whose three configurations are all present."""
-    def without_block(spec):
-        coupling = _rest(spec.get("coupling", {}), (BLOCK_KEY,))
-        return {**_rest(spec, REFINEMENTS + ("coupling",)), **({"coupling": coupling} if coupling else {})}
-
     out = []
     for config in configs:
-        block = runs[config].get("coupling", {}).get(BLOCK_KEY)
-        if not block:
+        if not runs[config].get("coupling", {}).get(BLOCK_KEY):
             continue
-        rest, (rx, ry) = without_block(runs[config]), _refinement(runs[config])
-        match = {_refinement(runs[c]): c for c in configs if c != config and without_block(runs[c]) == rest
-                 and BLOCK_KEY not in runs[c].get("coupling", {})}
-        coarse, fine = match.get((rx // block[0], ry // block[1])), match.get((rx, ry))
+        coarse, fine = _block_matches(runs, configs, config)
         if coarse and fine:
             out.append((coarse, config, fine))
     return tuple(sorted(out))
+
+
+def grid_chains(runs, configs):
+    """The grid studies, {name: configurations, coarsest gas first}: each family of
+    configurations that differ in their cells alone (grid_pairs), named by its coarsest; and
+    each coarse configuration's two-grid series (after Deb & Tafti 2013), it and the
+    configurations whose particle field is on its cells while the gas is refined, named
+    '<coarsest> two-grid'. Only chains of two or more."""
+    chains = {}
+    own_step = [c for c in configs if "gas_step" in runs[c]]  # the gas step's test, not a grid's
+    for a, b in grid_pairs(runs, [c for c in configs if c not in own_step]):
+        family = next((f for f in chains.values() if a in f or b in f), None)
+        if family is None:
+            chains[a] = [a, b]
+        else:
+            family += [c for c in (a, b) if c not in family]
+    for config in configs:
+        if runs[config].get("coupling", {}).get(BLOCK_KEY):
+            coarse, _ = _block_matches(runs, configs, config)
+            if coarse:
+                chains.setdefault(f"{coarse} two-grid", [coarse]).append(config)
+    return {name: sorted(chain, key=lambda c: _cells(runs[c])) for name, chain in sorted(chains.items())}
+
+
+def representative_cell(spec):
+    """The gas cells' representative size relative to the template's, 1 / sqrt(refine_x refine_y)
+    (Celik et al. 2008's h for a 2-D grid)."""
+    return 1.0 / math.sqrt(_cells(spec))
 
 
 def pm(value, error, scale=1.0):
@@ -329,6 +372,61 @@ class Replicates:
                 d["paper_in_errors"] = (paper - d["mean"]) / d["error"]
         return out
 
+    # Grid convergence --------------------------------------------------------------------------
+    def grid_chains(self):
+        return {name: [c for c in chain if c in self.groups]
+                for name, chain in grid_chains(self.report.study["runs"], list(self.groups)).items()
+                if sum(c in self.groups for c in chain) >= 2}
+
+    def margin(self, key, a, b):
+        """The equivalence margin of `key` (SI) for two sets of realizations' values."""
+        kind, value = EQUIVALENCE_MARGIN[key]
+        return value * abs(numpy.mean(a + b)) if kind == "of its value" else value
+
+    def grid_study(self, ensembles):
+        """Per grid chain and window, for each GRID_QUANTITIES: the ensemble means along the
+        chain; for every three consecutive grids Celik et al.'s apparent order, extrapolated
+        value and GCI of the finest (tfdem.stats.grid_convergence, on the ensemble means, h from
+        representative_cell), with whether the finer difference stands clear of the
+        realizations' noise (RESOLVED errors: else the order is the noise's); for every pair of
+        consecutive grids and the chain's ends, the two one-sided tests of equivalence within
+        EQUIVALENCE_MARGIN on the realizations' values."""
+        runs = self.report.study["runs"]
+        out = {}
+        for name, chain in self.grid_chains().items():
+            h = [representative_cell(runs[c]) for c in chain]
+            entry = {"configurations": chain, "cells": h}
+            for w in self.windows:
+                values = {key: {c: [self.run_value(n, w, key)["mean"] for n in self.groups[c]] for c in chain}
+                          for key in GRID_QUANTITIES}
+                per_window = {}
+                for key in GRID_QUANTITIES:
+                    means = [ensembles[c][w][key]["mean"] for c in chain]
+                    q = {"means": [m["mean"] for m in means], "errors": [m["error"] for m in means],
+                         "convergence": [], "equivalence": []}
+                    for k in range(len(chain) - 2):
+                        coarse, middle, fine = means[k], means[k + 1], means[k + 2]
+                        finer = difference(middle, fine)
+                        g = {"grids": chain[k:k + 3],
+                             "resolved": abs(finer["mean"]) >= RESOLVED * finer["error"]}
+                        try:
+                            g.update(grid_convergence([h[k + 2], h[k + 1], h[k]],
+                                                      [fine["mean"], middle["mean"], coarse["mean"]]))
+                        except ValueError as e:
+                            g["note"] = str(e)
+                        q["convergence"].append(g)
+                    pairs = [(chain[k], chain[k + 1]) for k in range(len(chain) - 1)]
+                    if len(chain) > 2:
+                        pairs.append((chain[0], chain[-1]))
+                    for a, b in pairs:
+                        va, vb = values[key][a], values[key][b]
+                        t = equivalence_test(vb, va, self.margin(key, va, vb), ALPHA)
+                        q["equivalence"].append(dict(t, pair=[a, b]))
+                    per_window[key] = q
+                entry[w] = per_window
+            out[name] = entry
+        return out
+
     def packing(self, ensembles):
         """The jet bed's bulk coordination number, lattice packing against the poured
         realizations (jet_m1), and the share of the lattice's excess over the paper's ~1.2
@@ -361,6 +459,7 @@ class Replicates:
             "batch_error_check": self.batch_error_check(ensembles),
             "correlation": {c: self.correlations(c) for c in self.groups},
             "maps": self.map_numbers(), "differences": self.differences(ensembles),
+            "grid_study": self.grid_study(ensembles),
             "packing": self.packing(ensembles)}
         self.result["statements"] = self.statements()
         return self.result
@@ -638,6 +737,7 @@ class Replicates:
                              f" ({values[w][f'{key} {part}']['in_errors']:+.1f})" for w in (w0, w1)]
                     name = label + (" std" if part == "std" else "") + (f" ({unit})" if unit else "")
                     lines.append(f"| {pair} | {name} | {cells[0]} | {cells[1]} |")
+        lines += self._grid_study_markdown(w0, w1)
         lines += ["", "Solids-fraction maps (bottom 45 cm, on the coarse cells): noise floor = mean L1 [min-max] "
                       "between the realizations of one configuration over the same window; a comparison = mean L1 "
                       "[min-max] over every pair of realizations across the two, with the exact permutation test's "
@@ -654,6 +754,36 @@ class Replicates:
                       f"{RESOLVED:g} standard errors, about 90 % two-sided with the ~6 degrees of freedom of two "
                       "4-run ensembles; a map difference at p < 0.05):", ""]
         lines += [f"- {s}" for s in r["statements"]]
+        return lines
+
+
+    def _grid_study_markdown(self, w0, w1):
+        study = self.result["grid_study"]
+        if not study:
+            return []
+        lines = ["", "Grid convergence (Celik et al. 2008, on the ensemble means, h = 1 / sqrt(cells per template "
+                     "cell); 'in noise': the finer two grids' difference is below "
+                     f"{RESOLVED:g} standard errors, so the order is the noise's) and equivalence of two grids (two "
+                     f"one-sided tests at {ALPHA:g}, margins {MARGIN_TEXT}; the 90 % interval of the difference "
+                     "must lie inside the margin):", "",
+                 "| chain | quantity | window | means, coarsest first | order; extrapolated; GCI of the finest | "
+                 "equivalence: pair, difference [90 % interval], p |", "|---|---|---|---|---|---|"]
+        for name, entry in study.items():
+            for key in GRID_QUANTITIES:
+                label, unit, scale = next((m[1], m[2], m[3]) for m in METRICS if m[0] == key)
+                for w in (w0, w1):
+                    q = entry[w][key]
+                    means = ", ".join(pm(m, e, scale) for m, e in zip(q["means"], q["errors"]))
+                    gci = "; ".join(
+                        (f"{g['order']:.2f}; {scale * g['extrapolated']:.4g}; {100 * g['gci_fine']:.2g} %"
+                         + (" (oscillating)" if g["oscillatory"] else "") if "order" in g else g["note"])
+                        + ("" if g["resolved"] else " (in noise)") for g in q["convergence"]) or "-"
+                    equal = "; ".join(
+                        f"{t['pair'][1]} − {t['pair'][0]}: {scale * t['mean']:+.3g} "
+                        f"[{scale * t['interval'][0]:+.3g}, {scale * t['interval'][1]:+.3g}], p {t['p']:.3f} "
+                        f"({'equivalent' if t['equivalent'] else 'not shown equivalent'})" for t in q["equivalence"])
+                    lines.append(f"| {name} | {label}{f' ({unit})' if unit else ''} | {w} | {means} | {gci} | "
+                                 f"{equal} |")
         return lines
 
 
