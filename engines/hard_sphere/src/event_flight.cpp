@@ -403,6 +403,13 @@ void EventFlight::predict(int i, double now, double end) {
       partner = j;
     }
   }
+  predict_boundaries(i, xi, vi, now, best, partner);
+  if (partner == std::numeric_limits<int>::min()) return;  // nothing before the step's end
+  push_event(i, best, partner);
+}
+
+void EventFlight::predict_boundaries(int i, const Vec3 &xi, const Vec3 &vi, double now, double &best,
+                                     int &partner) const {
   for (int a = 0; a < 3; ++a)
     for (int side = 0; side < 2; ++side) {
       if (!box_.wall[a][side] || box_.periodic[a]) continue;
@@ -416,21 +423,58 @@ void EventFlight::predict(int i, double now, double end) {
         partner = -1 - (2 * a + side);
       }
     }
-  {  // leaving the anchor's sphere: |d + v t| = skin / 2
-    const Vec3 d = nearest(xi - lists_.anchor[i]);
-    const double vv = dot(vi, vi), b = dot(d, vi), c = dot(d, d) - 0.25 * lists_.skin * lists_.skin;
-    if (vv > 0) {
-      const double root = std::sqrt(std::max(b * b - vv * c, 0.0));
-      const double t = c >= 0 ? 0 : b > 0 ? -c / (b + root) : (root - b) / vv;
-      if (now + t < best) {
-        best = now + t;
-        partner = kLeavesAnchor;
-      }
+  // leaving the anchor's sphere: |d + v t| = skin / 2
+  const Vec3 d = nearest(xi - lists_.anchor[i]);
+  const double vv = dot(vi, vi), b = dot(d, vi), c = dot(d, d) - 0.25 * lists_.skin * lists_.skin;
+  if (vv > 0) {
+    const double root = std::sqrt(std::max(b * b - vv * c, 0.0));
+    const double t = c >= 0 ? 0 : b > 0 ? -c / (b + root) : (root - b) / vv;
+    if (now + t < best) {
+      best = now + t;
+      partner = kLeavesAnchor;
     }
   }
-  if (partner == std::numeric_limits<int>::min()) return;  // nothing before the step's end
-  heap_.push_back({best, i, partner, count_[i], partner >= 0 ? count_[partner] : 0});
+}
+
+void EventFlight::push_event(int i, double time, int partner) {
+  heap_.push_back({time, i, partner, count_[i], partner >= 0 ? count_[partner] : 0});
   std::push_heap(heap_.begin(), heap_.end(), std::greater<Event>());
+}
+
+void EventFlight::predict_all(double now, double end) {
+  const int n = static_cast<int>(size());
+  counts_.predictions += n;
+  now_position_.resize(n);
+  for (int i = 0; i < n; ++i) now_position_[i] = motion_[i].x + (now - motion_[i].t) * motion_[i].v;
+  best_time_.assign(n, end);
+  best_partner_.assign(n, std::numeric_limits<int>::min());
+  for (int i = 0; i < n; ++i) {
+    const Vec3 &xi = now_position_[i], &vi = motion_[i].v;
+    for (int k = i * lists_.capacity; k < i * lists_.capacity + lists_.degree[i]; ++k) {
+      const int j = lists_.partners[k];
+      if (j < i) continue;  // the pair's time was found from j's list
+      const Vec3 r = nearest(xi - now_position_[j]);
+      const Vec3 u = vi - motion_[j].v;
+      const double b = dot(r, u);
+      if (b >= 0) continue;  // moving apart
+      const double sigma = lists_.contact[k];
+      const double c = dot(r, r) - sigma * sigma;
+      const double later = std::max(best_time_[i], best_time_[j]);
+      double t = 0;  // touching or overlapping, and approaching: now
+      if (c > 0) {
+        if (c >= -2 * b * (later - now)) continue;  // t >= c / (-2 b): after both partners' best so far
+        const double disc = b * b - dot(u, u) * c;
+        if (disc <= 0) continue;  // they pass each other
+        t = c / (-b + std::sqrt(disc));  // eq. 45
+      }
+      if (now + t < best_time_[i]) best_time_[i] = now + t, best_partner_[i] = j;
+      if (now + t < best_time_[j]) best_time_[j] = now + t, best_partner_[j] = i;
+    }
+  }
+  for (int i = 0; i < n; ++i) {
+    predict_boundaries(i, now_position_[i], motion_[i].v, now, best_time_[i], best_partner_[i]);
+    if (best_partner_[i] != std::numeric_limits<int>::min()) push_event(i, best_time_[i], best_partner_[i]);
+  }
 }
 
 std::string EventFlight::collapse(int n, double dt, double when, double last_half) const {
@@ -465,7 +509,7 @@ FlightCounts EventFlight::fly(double dt) {
     relax_tolerated();
   else
     build_lists(0);
-  for (int i = 0; i < n; ++i) predict(i, 0, dt);
+  predict_all(0, dt);
   const long limit = max_collisions_per_particle_ * std::max(n, 1);
   double halfway = -1;  // when half the limit was reached: tells a cascade at one instant
   const CollisionLaw elastic{1, 0, 0};  // TC model: elastic and smooth
@@ -483,7 +527,7 @@ FlightCounts EventFlight::fly(double dt) {
       if (!renew_list(a, e.time)) {  // a list is full: all of them again, with more room
         build_lists(e.time);
         heap_.clear();
-        for (int i = 0; i < n; ++i) predict(i, e.time, dt);
+        predict_all(e.time, dt);
         continue;
       }
       predict(a, e.time, dt);

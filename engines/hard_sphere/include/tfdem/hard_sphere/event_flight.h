@@ -153,6 +153,12 @@ class EventFlight {
   }
   Vec3 wrapped(Vec3 r) const;
   void predict(int i, double now, double end);
+  // predict() for every particle, each listed pair's time computed once for both partners
+  // (the same earliest events, at half the pair tests: after each drag kick all of them)
+  void predict_all(double now, double end);
+  // particle i's earliest event among the walls and its anchor's sphere, if before `best`
+  void predict_boundaries(int i, const Vec3 &xi, const Vec3 &vi, double now, double &best, int &partner) const;
+  void push_event(int i, double time, int partner);
   // The message of a flow step that ran out of collisions, with its likely cause and fix
   std::string collapse(int n, double dt, double when, double last_half) const;
   void advance_to(int i, double t);
@@ -183,6 +189,9 @@ class EventFlight {
   std::vector<double> reach_;
   bool periodic_ = false;
   std::vector<Event> heap_;
+  std::vector<Vec3> now_position_;  // predict_all's positions at its instant
+  std::vector<double> best_time_;
+  std::vector<int> best_partner_;
   FlightCounts counts_;
 };
 
