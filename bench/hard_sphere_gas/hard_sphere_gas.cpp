@@ -68,6 +68,7 @@ int main(int argc, char **argv) {
     }
     const CollisionLaw elastic{1, 0, 0};
     EventFlight gas(box, 1, {elastic}, {elastic}, 0, 1000000);
+    if (argc > 4) gas.set_skin(std::atof(argv[4]));
     const std::size_t n = snapshot.position.size();
     std::mt19937 random(seed);
     std::normal_distribution<double> gauss(0, 1);
@@ -82,9 +83,13 @@ int main(int argc, char **argv) {
     }
     const double scale = std::sqrt(3.0 * n / energy);  // kT = 1: sum v^2 = 3 N
     for (std::size_t i = 0; i < n; ++i) gas.add(snapshot.position[i], scale * v[i], {}, snapshot.radius[i], 1, 0);
-    long collisions = 0;
+    long collisions = 0, renewed = 0, predictions = 0;
     const auto start = std::chrono::steady_clock::now();
-    for (double t = 0; t < time - 1e-12; t += 1) collisions += gas.fly(std::min(1.0, time - t)).pair;
+    for (double t = 0; t < time - 1e-12; t += 1) {
+      const tfdem::hard_sphere::FlightCounts c = gas.fly(std::min(1.0, time - t));
+      collisions += c.pair, renewed += c.lists_renewed, predictions += c.predictions;
+    }
+    std::printf("renewed %ld\npredictions %ld\n", renewed, predictions);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::printf("spheres %zu\ncollisions %ld\nseconds %.6f\nmicroseconds per collision %.4f\n", n, collisions,
                 seconds, 1e6 * seconds / collisions);

@@ -260,7 +260,7 @@ void EventFlight::build_lists(double now) {
     lists_.degree.clear();
     return;
   }
-  lists_.skin = kSkinDiameters * 2 * largest;
+  lists_.skin = skin_diameters_ * 2 * largest;
   // cells at least as wide as the farthest reach of a listed pair's anchors
   const double reach = 2 * largest + lists_.skin;
   for (int a = 0; a < 3; ++a)
@@ -423,9 +423,12 @@ void EventFlight::predict_boundaries(int i, const Vec3 &xi, const Vec3 &vi, doub
         partner = -1 - (2 * a + side);
       }
     }
-  // leaving the anchor's sphere: |d + v t| = skin / 2
+  // leaving the anchor's sphere: |d + v t| = skin / 2, not before (skin/2 - |d|) / |v| >=
+  // ((skin/2)^2 - |d|^2) / (skin |v|): when that is past `best`, no root is needed
   const Vec3 d = nearest(xi - lists_.anchor[i]);
   const double vv = dot(vi, vi), b = dot(d, vi), c = dot(d, d) - 0.25 * lists_.skin * lists_.skin;
+  const double least = -c / lists_.skin;
+  if (c < 0 && least * least >= vv * (best - now) * (best - now)) return;
   if (vv > 0) {
     const double root = std::sqrt(std::max(b * b - vv * c, 0.0));
     const double t = c >= 0 ? 0 : b > 0 ? -c / (b + root) : (root - b) / vv;

@@ -82,6 +82,8 @@ class EventFlight {
   // clock advances by dt. Throws std::runtime_error for more collisions than the bound.
   FlightCounts fly(double dt);
 
+  // The skin in largest diameters (default 0.2; the lists are built again at the next step)
+  void set_skin(double diameters) { skin_diameters_ = diameters; lists_.built = false; }
   double clock() const { return clock_; }
   void set_clock(double t) { clock_ = t; }
   std::size_t size() const { return position.size(); }
@@ -170,6 +172,7 @@ class EventFlight {
   double elastic_within_;
   long max_collisions_per_particle_;
   double clock_ = 0;
+  double skin_diameters_ = 0.2;
   // within a step: each particle's position at its time t and its velocity, packed in one
   // cache line (the predictions read a partner's at once), and its collision counter
   struct alignas(64) Motion {
