@@ -61,6 +61,28 @@ TEST(HardSphereFlight, WallBounceByHand) {
   EXPECT_DOUBLE_EQ(f.velocity[0].x, 0.5);
 }
 
+// The TC model on a wall collision placed by hand (elastic_within 1 s, so every collision of
+// this step is within it): a sphere of radius 1 mm and mass m at x = 0.005 m moving at (-1,
+// 0.5, 0) m/s against the wall x = 0, law e_n = 0.5, mu = 0.05, beta_0 = 0.4 (seed 001 eqs.
+// 17-21, a wall of infinite mass: m_ab = m). Elastic and smooth: (1, 0.5, 0), no spin. Keeping
+// friction, e_n = 1: J_n = 2 m; sticking would need mu J_n >= (2/7)(1.4)(0.5) m = 0.2 m, and
+// mu J_n = 0.1 m, so it slides: J_t = -0.1 m along y, v = (1, 0.4, 0); the spin I dw =
+// -R n x J with I = 0.4 m R^2, n x J = (0, 0, -0.1 m): w_z = 0.1 / (0.4 R) = 250 rad/s.
+TEST(HardSphereFlight, TcModelIsElasticAndSmoothOrKeepsFriction) {
+  for (const bool keep : {false, true}) {
+    EventFlight f = flight(box(0.1), {0.5, 0.05, 0.4}, 1.0);
+    f.set_tc_keeps_friction(keep);
+    f.add({0.005, 0.05, 0.05}, {-1, 0.5, 0}, {}, 1e-3, 1e-5, 0);
+    f.last_collision[0] = 0;
+    const FlightCounts c = f.fly(0.01);
+    EXPECT_EQ(c.wall, 1);
+    EXPECT_EQ(c.elastic, 1);
+    EXPECT_DOUBLE_EQ(f.velocity[0].x, 1.0) << "keep " << keep;
+    EXPECT_NEAR(f.velocity[0].y, keep ? 0.4 : 0.5, 1e-15) << "keep " << keep;
+    EXPECT_NEAR(f.spin[0].z, keep ? 250 : 0, 1e-10) << "keep " << keep;
+  }
+}
+
 // Random spheres on a lattice of a 5 cm box with random velocities.
 void fill(EventFlight &f, int per_side, double size, unsigned seed) {
   std::mt19937 random(seed);
@@ -143,6 +165,45 @@ TEST(HardSphereFlight, InelasticCollapseIsStoppedAndTheTcModelPreventsIt) {
   EXPECT_EQ(c.pair, 3);
   EXPECT_GT(c.elastic, 0);
   EXPECT_LT(deepest_overlap(tc), 1e-12);
+}
+
+// A rough gas (e_n 0.7, mu 0.3, beta_0 0.4), periodic, in which the TC model makes every
+// collision elastic (elastic_within 1 s): smooth, it keeps its energy to round-off; keeping
+// friction, it loses energy through the tangential impulses alone, keeps its momentum and
+// collides on without collapse. 512 spheres of 2 mm in (2.5 cm)^3 (solids fraction 0.137,
+// Carnahan-Starling g_0 1.46), each velocity component uniform in (-1, 1) m/s (<v^2> = 1 m^2/s^2):
+// the Enskog rate 4 n sigma^2 g_0 sqrt(pi <v^2> / 3) is 780 per sphere and second, 20,000
+// collisions over the 0.1 s: at least half of them asked of the smooth gas; the rough one
+// cools as it collides (its rate falls with the square root of its temperature), so a tenth.
+TEST(HardSphereFlight, TcModelKeepingFrictionDissipatesWithoutCollapse) {
+  for (const bool keep : {false, true}) {
+    WallBox periodic = box(0.025, false);
+    for (bool &axis : periodic.periodic) axis = true;
+    EventFlight f = flight(periodic, {0.7, 0.3, 0.4}, 1.0, 100000);
+    f.set_tc_keeps_friction(keep);
+    fill(f, 8, 0.025, 32452843);
+    for (std::size_t i = 0; i < f.size(); ++i) f.last_collision[i] = 0;
+    Vec3 p0;
+    for (std::size_t i = 0; i < f.size(); ++i) p0 += f.mass[i] * f.velocity[i];
+    const double e0 = kinetic_energy(f);
+    long collisions = 0, elastic = 0;
+    for (int step = 0; step < 20; ++step) {
+      const FlightCounts c = f.fly(0.005);
+      collisions += c.pair;
+      elastic += c.elastic;
+    }
+    Vec3 p;
+    for (std::size_t i = 0; i < f.size(); ++i) p += f.mass[i] * f.velocity[i];
+    EXPECT_GT(collisions, keep ? 2000 : 10000) << "keep " << keep;
+    EXPECT_EQ(elastic, collisions) << "keep " << keep;
+    EXPECT_NEAR(p.x, p0.x, 1e-18);
+    EXPECT_NEAR(p.y, p0.y, 1e-18);
+    if (keep)
+      EXPECT_LT(kinetic_energy(f), 0.95 * e0);
+    else
+      EXPECT_NEAR(kinetic_energy(f) / e0, 1.0, 1e-11);
+    EXPECT_LT(deepest_overlap(f), 1e-12);
+  }
 }
 
 // Elastic, smooth, equal spheres in a walled box moved by searching every pair and wall for

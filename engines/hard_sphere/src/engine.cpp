@@ -156,6 +156,7 @@ void HardSphereEngine::set_laws(const HardSphereOptions &o, const std::string &s
   }
   WallBox box = flight_.box();
   EventFlight laws(box, type_count_, pairs, walls, o.elastic_within, o.max_collisions_per_particle);
+  laws.set_tc_keeps_friction(o.tc_keeps_friction);
   std::swap(laws.position, flight_.position);
   std::swap(laws.velocity, flight_.velocity);
   std::swap(laws.spin, flight_.spin);

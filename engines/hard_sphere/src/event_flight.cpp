@@ -515,7 +515,6 @@ FlightCounts EventFlight::fly(double dt) {
   predict_all(0, dt);
   const long limit = max_collisions_per_particle_ * std::max(n, 1);
   double halfway = -1;  // when half the limit was reached: tells a cascade at one instant
-  const CollisionLaw elastic{1, 0, 0};  // TC model: elastic and smooth
   while (!heap_.empty()) {
     std::pop_heap(heap_.begin(), heap_.end(), std::greater<Event>());
     const Event e = heap_.back();
@@ -545,7 +544,7 @@ FlightCounts EventFlight::fly(double dt) {
       const Vec3 r = nearest(motion_[a].x - motion_[b].x);
       const bool tc = when - last_collision[a] < elastic_within_ || when - last_collision[b] < elastic_within_;
       Sphere sb{motion_[b].v, spin[b], radius[b], mass[b]};
-      const Impulse j = collide(sa, sb, (1 / norm(r)) * r, tc ? elastic : law(a, b));
+      const Impulse j = collide(sa, sb, (1 / norm(r)) * r, tc ? tc_law(law(a, b)) : law(a, b));
       motion_[b].v = sb.velocity, spin[b] = sb.spin;
       impulse[b] -= j.on_a;
       last_collision[b] = when;
@@ -559,7 +558,7 @@ FlightCounts EventFlight::fly(double dt) {
       Vec3 normal;
       normal[axis] = side == 0 ? 1 : -1;  // into the box
       const bool tc = when - last_collision[a] < elastic_within_;
-      const Impulse j = collide_with_wall(sa, normal, tc ? elastic : wall_laws_[type[a]]);
+      const Impulse j = collide_with_wall(sa, normal, tc ? tc_law(wall_laws_[type[a]]) : wall_laws_[type[a]]);
       motion_[a].v = sa.velocity, spin[a] = sa.spin;
       impulse[a] += j.on_a;
       ++counts_.wall;

@@ -64,6 +64,11 @@ std::shared_ptr<const EngineSettings> read_options(ConfigSection &dem) {
       {"elastic_within", "s", "TC model (Luding & McNamara 1998): a collision this soon after either particle's last "
                               "is elastic and smooth (0: off)"},
       o->elastic_within, 0, 1);
+  o->tc_keeps_friction = section.boolean(
+      {"tc_keeps_friction", "", "the TC model's collisions elastic in the normal direction only, keeping the pair's "
+                                "friction and tangential restitution (false: elastic and smooth, as Luding & "
+                                "McNamara's)"},
+      o->tc_keeps_friction);
   o->max_collisions_per_particle = section.integer(
       {"max_collisions_per_particle", "", "collisions per particle in one flow step past which the run stops "
                                           "(inelastic collapse)"},

@@ -40,6 +40,8 @@ struct HardSphereOptions : EngineSettings {
   // TC model (Luding & McNamara 1998): a collision within this many seconds of either
   // particle's previous one is elastic and smooth (0: off)
   double elastic_within = 1e-5;
+  // The TC model's collisions keep the pair's friction and tangential restitution (e_n = 1 only)
+  bool tc_keeps_friction = false;
   // Collisions per particle in one flow step above which the run stops (inelastic collapse)
   long max_collisions_per_particle = 10000;
   // N_c counts the pairs closer than this fraction of their mean diameter (hard spheres
