@@ -67,6 +67,7 @@ CONSERVATIVE = [(KINETIC, r"RASModel\s+kineticTheory;", "RASModel        kinetic
                 (KINETIC, r"kineticTheoryCoeffs", "kineticTheoryConservativeCoeffs"),
                 ("system/controlDict", r"\napplication\s", f'\nlibs            ("{os.path.abspath(KINETIC_THEORY_LIBRARY)}");\napplication ')]
 PERTURBATION = 0.02  # relative, uniform per cell, of the packed bed's alpha_s
+INLET_PERTURBATION = 0.1  # relative, uniform per inlet face, of the inflow velocity (held in time)
 # A bed of bubbles: the rows' lateral std of alpha_s's departure from its cell's time mean
 # above this (1-D waves and slugs, and a steady lateral profile, give 0)
 BUBBLING = 0.02
@@ -108,6 +109,8 @@ SEED000_VARIANTS = {
                                       "        restitutionCoefficient 0.9;\n        specularityCoefficient 0.5;\n"
                                       "        value           uniform 1e-4;")]),
     "perturbed": (f"start with alpha_s perturbed by +-{PERTURBATION:.0%} at random per cell (inventory kept)", []),
+    "inlet_perturbed": (f"the inflow varied by +-{INLET_PERTURBATION:.0%} at random across the inlet's faces (its "
+                        "mean kept), held in time: the distributor's symmetry broken", []),
     "explicit_phase_pressure": ("the solids pressure explicit in the phase-fraction equation (implicitPhasePressure no): "
                                 "the numerics' own damping of alpha_s", [("system/fvSolution", r"implicitPhasePressure\s+yes;",
                                                                          "implicitPhasePressure no;")]),
@@ -146,6 +149,7 @@ VARIANTS = {**{name: ("seed000",) + v for name, v in SEED000_VARIANTS.items()},
 DEFAULT_END_TIME = {"seed000": 6.0, "fluidised_bed": 0.6}  # s, unless a variant's own below
 END_TIME = {"fluidised_bed_particles_2.5mm": 2.0, "fluidised_bed_particles_2.5mm_restitution_0.97": 2.0}
 CHANGES_AFTER_PREPARE = {"perturbed"}
+CHANGES_BEFORE_PREPARE = {"inlet_perturbed"}
 
 
 class MechanismError(Exception):
@@ -223,6 +227,26 @@ def perturb(case, seed=1):
         f.write(text)
 
 
+def perturb_inlet(case, seed=1):
+    """0.orig/U.air's inletVelocity (0 U 0), uniform, made one value per inlet face (the
+    bottom row's nx): U (1 + INLET_PERTURBATION u), u uniform on [-1, 1], scaled to keep the
+    mean U."""
+    path = os.path.join(case, "0.orig", "U.air")
+    with open(path) as f:
+        text = f.read()
+    found = re.search(r"inletVelocity\s+uniform\s+\(\s*0\s+(\S+)\s+0\s*\)\s*;", text)
+    if not found:
+        raise MechanismError(f"{path}: no 'inletVelocity uniform (0 U 0);' to perturb")
+    u, (nx, _) = float(found.group(1)), grid(case)
+    rng = random.Random(seed)
+    factors = [1 + INLET_PERTURBATION * rng.uniform(-1, 1) for _ in range(nx)]
+    scale = nx / sum(factors)
+    values = " ".join(f"(0 {u * f * scale:.9g} 0)" for f in factors)
+    text = text[:found.start()] + f"inletVelocity   nonuniform List<vector> {nx} ({values});" + text[found.end():]
+    with open(path, "w") as f:
+        f.write(text)
+
+
 def is_output(name):
     """A run's output in the template folder (a time folder, a log, postProcessing)."""
     try:
@@ -242,6 +266,8 @@ def run_variant(name, end_time):
     for path, pattern, replacement, *expected in edits:
         edit(os.path.join(case, path), pattern, replacement, *expected)
     set_control(case, end_time or END_TIME.get(name, DEFAULT_END_TIME[template]), WRITE_INTERVAL[template])
+    if name in CHANGES_BEFORE_PREPARE:
+        perturb_inlet(case)
     for step in ("Allprepare", "Allsolve"):
         if step == "Allsolve" and name in CHANGES_AFTER_PREPARE:
             perturb(case)

@@ -9,11 +9,13 @@ its committed table against its committed measures:
 - the alpha-weighted Theta over the bed's rows;
 - the second-half summary of a hand-made series, the Δp std from the intervals' means and
   spreads (the law of total variance);
+- the inlet perturbation: one velocity per inlet face, the mean inflow kept;
 - results/tfm_mechanism.md is what report_text() makes of results/tfm_mechanism/*.csv.
 """
 import csv
 import math
 import os
+import re
 import sys
 import tempfile
 
@@ -68,6 +70,26 @@ close("summary: Δp mean", s["dp_mean"], 110.0)
 close("summary: Δp std, total variance of (110 ± 3), (130 ± 4), (90 ± 0)", s["dp_std"],
       math.sqrt((9 + 0 + 16 + 400 + 0 + 400) / 3))
 close("summary: whole-bed support", s["support"], (0.8 + 0.7 + 0.6) / 3)
+
+# the inlet perturbation on a hand-made case of 3 inlet faces: 3 values, mean 2 m/s kept,
+# each within +-10 % (times the mean's rescaling) of it, not all equal
+with tempfile.TemporaryDirectory() as case:
+    os.makedirs(os.path.join(case, "system"))
+    os.makedirs(os.path.join(case, "0.orig"))
+    with open(os.path.join(case, "system", "blockMeshDict"), "w") as f:
+        f.write("convertToMeters 1;\nvertices\n(\n    (0 0 0) (0.03 0 0) (0.03 0.3 0) (0 0.3 0)\n"
+                "    (0 0 0.01) (0.03 0 0.01) (0.03 0.3 0.01) (0 0.3 0.01)\n);\n"
+                "blocks\n(\n    hex (0 1 2 3 4 5 6 7) (3 3 1) simpleGrading (1 1 1)\n);\n")
+    with open(os.path.join(case, "0.orig", "U.air"), "w") as f:
+        f.write("inlet\n{\n    inletVelocity   uniform (0 2 0);\n}\n")
+    mechanism.perturb_inlet(case)
+    text = open(os.path.join(case, "0.orig", "U.air")).read()
+    values = [float(v) for v in re.findall(r"\(0 (\S+) 0\)", text)]
+    check("inlet perturbation: one value per inlet face", "nonuniform List<vector> 3" in text and len(values) == 3,
+          text)
+    close("inlet perturbation: the mean inflow kept", sum(values) / 3, 2.0, 1e-8)
+    check("inlet perturbation: within +-10 % (rescaled) and not uniform",
+          all(abs(v / 2 - 1) < 0.1 / 0.9 + 1e-9 for v in values) and max(values) - min(values) > 1e-3, str(values))
 
 mechanism.RESULTS = os.path.join(STUDIES, "seed000", "results", "tfm_mechanism")
 text, missing = mechanism.report_text()
