@@ -205,7 +205,7 @@ def report(sweep, points, end_time, out, cost="wall"):
     by_name = {p.name: p for p in finished}
     if sweep["reference"] not in by_name:
         raise SweepError(f"the reference point '{sweep['reference']}' has not finished: run it first")
-    outputs = {p.name: BedOutputs(p.case) for p in finished}
+    outputs = {p.name: BedOutputs(p.case, dp_height=p.dp_height) for p in finished}
     metrics = {}
     for name, d in outputs.items():
         t, h = d.mean_height()

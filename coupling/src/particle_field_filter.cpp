@@ -92,6 +92,24 @@ double deposition_variance(double spacing, int block) {
   return width * width / 12.0 + interpolation * width * width;
 }
 
+namespace {
+
+// The pseudo-time of the diffusion along `axis` that brings the mapping's own variance there up
+// to b^2 / 2; throws naming the least bandwidth when the mapping alone spreads more.
+double diffusion_time(double bandwidth, double spacing, int block, int axis) {
+  const double deposited = deposition_variance(spacing, block);
+  const double time = (bandwidth * bandwidth / 2.0 - deposited) / 2.0;
+  if (time >= 0.0) return time;
+  std::ostringstream why;
+  why << "is narrower than the cells along " << kAxisName[axis] << ": mapping into " << (block > 1 ? "blocks" : "cells")
+      << " of " << block * spacing << " m already spreads a particle by a variance of " << deposited
+      << " m^2 there, more than b^2 / 2; give a bandwidth of at least " << std::sqrt(2.0 * deposited)
+      << " m (3-6 particle diameters), or leave it out";
+  throw std::invalid_argument(refusal(bandwidth, why.str()));
+}
+
+}  // namespace
+
 std::vector<double> neumann_heat_kernel(int n, double spacing, double time) {
   const std::size_t size = static_cast<std::size_t>(n);
   std::vector<double> basis(size * size);  // v_k(i), orthonormal: row k
@@ -144,17 +162,7 @@ ParticleFieldFilter::ParticleFieldFilter(const CartesianGrid &grid, double bandw
     const bool spreads = bandwidth > 0.0 && blocks > 1;
     if (!spreads && k == 1) continue;
     std::vector<double> matrix;
-    if (spreads) {
-      const double deposited = deposition_variance(grid_.spacing[a], k);
-      pseudo_time_[a] = (bandwidth * bandwidth / 2.0 - deposited) / 2.0;
-      if (pseudo_time_[a] < 0.0) {
-        std::ostringstream why;
-        why << "is narrower than the cells along " << kAxisName[a] << ": mapping into cells of " << k * grid_.spacing[a]
-            << " m already spreads a particle by a variance of " << deposited << " m^2 there, more than b^2 / 2; give a "
-            << "bandwidth of at least " << std::sqrt(2.0 * deposited) << " m (3-6 particle diameters), or leave it out";
-        throw std::invalid_argument(refusal(bandwidth, why.str()));
-      }
-    }
+    if (spreads) pseudo_time_[a] = diffusion_time(bandwidth, grid_.spacing[a], k, a);
     if (!spreads)
       matrix = block_estimate_kernel(n, k);
     else if (k == 1)

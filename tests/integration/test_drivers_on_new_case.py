@@ -17,7 +17,9 @@
      checks: measured 255.2 +- 6.4 Pa against 256.7 Pa.
 2. `pareto.py` on a two-point sweep of the same case (its template a path relative to the
    sweep file, no `packing`: the case's own bed; 0.2 s): both points run and are reported,
-   and the points' Delta p probes are on the rows either side of the levels (6, 10 and 118 mm); a template that is not a case is
+   and, with the sweep's dp_height of 10 cm, the points' Delta p probes are on the rows either
+   side of its levels (6 and 10 mm for the plate's top at 4 mm, 102 and 106 mm for 104 mm) and
+   the report reads them; a template that is not a case is
    refused with a message naming it.
 """
 import csv
@@ -49,7 +51,8 @@ run: {end_time: 1.0, write_interval: 0.05}
 """
 N, RHO, RHO_GAS, D, G, WIDTH = 800, 2500.0, 1.2, 0.001, 9.81, 0.04
 FLOOR, TOP_ROW = 0.004, 0.118  # m: the plate's top; 12 cm - half a 4 mm cell
-PRESSURE_ROWS = [0.006, 0.010, 0.118]  # m: the first two rows above the plate (p at its top extrapolated), the top
+# the sweep's own dp_height 0.1 m: its upper level 0.104 m lies midway between the rows at 0.102 and 0.106
+PARETO_DP_HEIGHT, PARETO_PRESSURE_ROWS = 0.1, [0.006, 0.010, 0.102, 0.106]
 START, END = 0.2, 1.2  # s: the statistics' window, after the bed's start
 
 
@@ -96,7 +99,7 @@ def check_stats(checks, root, case, label):
 
 
 def check_pareto(checks, root):
-    sweep = {"template": "./case", "end_time": 0.2, "window": [0.05, 0.2], "batch": 0.05, "band": 0.01,
+    sweep = {"template": "./case", "dp_height": PARETO_DP_HEIGHT, "end_time": 0.2, "window": [0.05, 0.2], "batch": 0.05, "band": 0.01,
              "field_interval": 0.01, "statistics_interval": 0.002, "reference": "reference",
              "points": {"reference": {"gas_time_step": 2.5e-4}, "default": {}}}
     path = os.path.join(root, "sweep.yaml")
@@ -110,7 +113,7 @@ def check_pareto(checks, root):
     for point in ("reference", "default"):
         heights = sorted({round(p[1], 12) for p in probe_locations(os.path.join(root, "sweep", "runs", point),
                                                                     "studyPressure")})
-        checks.true(f"{point}: Delta p probes on the rows at {PRESSURE_ROWS} m", heights == PRESSURE_ROWS,
+        checks.true(f"{point}: Delta p probes on the rows at {PARETO_PRESSURE_ROWS} m", heights == PARETO_PRESSURE_ROWS,
                     f"({heights})")
     yaml.safe_dump(dict(sweep, template="./nowhere"), open(path, "w"))
     proc = python([PARETO, "run", path], root)
