@@ -10,10 +10,6 @@
 namespace tfdem::hard_sphere {
 namespace {
 
-// The skin, in largest diameters: a pair is listed while its anchors are within R_a + R_b +
-// skin (a thicker skin lists more partners to scan at each prediction, a thinner one makes
-// particles leave their anchor's sphere, and renew their lists, more often)
-constexpr double kSkinDiameters = 0.2;
 // A tolerated contact is taken a millionth of its distance closer than the spheres are (and a
 // sphere sunk into a wall a millionth of its gap nearer the wall): touching at exactly their
 // distance, a packing's network of contacts would collide at one instant without end once
@@ -27,6 +23,21 @@ constexpr int kSpareFraction = 2, kLeastSpare = 8;
 constexpr long kFewCollisions = 1000;
 // The event of leaving the anchor's sphere (walls are -1 ... -6)
 constexpr int kLeavesAnchor = -7;
+
+// Eq. 45: the time until a pair at separation r with relative velocity u touches at contact
+// distance sigma, 0 when it touches or overlaps while approaching; infinite when it moves
+// apart, passes by, or cannot touch within `horizon` (t >= c / (-2 b) bounds it from below).
+inline double contact_time(const Vec3 &r, const Vec3 &u, double sigma, double horizon) {
+  constexpr double kNever = std::numeric_limits<double>::infinity();
+  const double b = dot(r, u);
+  if (b >= 0) return kNever;  // moving apart
+  const double c = dot(r, r) - sigma * sigma;
+  if (c <= 0) return 0;
+  if (c >= -2 * b * horizon) return kNever;
+  const double disc = b * b - dot(u, u) * c;
+  if (disc <= 0) return kNever;  // they pass each other
+  return c / (-b + std::sqrt(disc));
+}
 
 std::uint64_t pair_key(int i, int j) {
   return (static_cast<std::uint64_t>(std::min(i, j)) << 32) | static_cast<std::uint32_t>(std::max(i, j));
@@ -386,18 +397,7 @@ void EventFlight::predict(int i, double now, double end) {
     const int j = lists_.partners[k];
     const Motion &mj = motion_[j];
     const Vec3 r = nearest(xi - (mj.x + (now - mj.t) * mj.v));
-    const Vec3 u = vi - mj.v;
-    const double b = dot(r, u);
-    if (b >= 0) continue;  // moving apart
-    const double sigma = lists_.contact[k];
-    const double c = dot(r, r) - sigma * sigma;
-    double t = 0;  // touching or overlapping, and approaching: now
-    if (c > 0) {
-      if (c >= -2 * b * (best - now)) continue;  // t >= c / (-2 b): not before the best so far
-      const double disc = b * b - dot(u, u) * c;
-      if (disc <= 0) continue;  // they pass each other
-      t = c / (-b + std::sqrt(disc));  // eq. 45
-    }
+    const double t = contact_time(r, vi - mj.v, lists_.contact[k], best - now);
     if (now + t < best) {
       best = now + t;
       partner = j;
@@ -456,20 +456,9 @@ void EventFlight::predict_all(double now, double end) {
     for (int k = i * lists_.capacity; k < i * lists_.capacity + lists_.degree[i]; ++k) {
       const int j = lists_.partners[k];
       if (j < i) continue;  // the pair's time was found from j's list
+      const double later = std::max(best_time_[i], best_time_[j]);  // past both partners' best: no use
       const Vec3 r = nearest(xi - now_position_[j]);
-      const Vec3 u = vi - motion_[j].v;
-      const double b = dot(r, u);
-      if (b >= 0) continue;  // moving apart
-      const double sigma = lists_.contact[k];
-      const double c = dot(r, r) - sigma * sigma;
-      const double later = std::max(best_time_[i], best_time_[j]);
-      double t = 0;  // touching or overlapping, and approaching: now
-      if (c > 0) {
-        if (c >= -2 * b * (later - now)) continue;  // t >= c / (-2 b): after both partners' best so far
-        const double disc = b * b - dot(u, u) * c;
-        if (disc <= 0) continue;  // they pass each other
-        t = c / (-b + std::sqrt(disc));  // eq. 45
-      }
+      const double t = contact_time(r, vi - motion_[j].v, lists_.contact[k], later - now);
       if (now + t < best_time_[i]) best_time_[i] = now + t, best_partner_[i] = j;
       if (now + t < best_time_[j]) best_time_[j] = now + t, best_partner_[j] = i;
     }

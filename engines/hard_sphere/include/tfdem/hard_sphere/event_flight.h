@@ -32,8 +32,9 @@
 // collision within `elastic_within` seconds of either particle's previous one is elastic and
 // smooth, or (set_tc_keeps_friction) elastic in the normal direction only: friction does not
 // drive the collapse (a tangential impulse leaves the normal relative velocity as it is), and
-// it is most of the dissipation of glass beads at e_n 0.97. A flow step with more than `max_collisions_per_particle` collisions per particle
-// stops with a message (a bed the event-driven model cannot carry).
+// it is most of the dissipation of glass beads at e_n 0.97. A flow step with more than
+// `max_collisions_per_particle` collisions per particle stops with a message (a bed the
+// event-driven model cannot carry).
 #ifndef TFDEM_HARD_SPHERE_EVENT_FLIGHT_H
 #define TFDEM_HARD_SPHERE_EVENT_FLIGHT_H
 
@@ -177,6 +178,9 @@ class EventFlight {
   double elastic_within_;
   long max_collisions_per_particle_;
   double clock_ = 0;
+  // The skin, in largest diameters: a pair is listed while its anchors are within R_a + R_b +
+  // skin (a thicker skin lists more partners to scan at each prediction, a thinner one makes
+  // particles leave their anchor's sphere, and renew their lists, more often)
   double skin_diameters_ = 0.2;
   bool tc_keeps_friction_ = false;
   // The law of a collision the TC model makes elastic
