@@ -134,20 +134,27 @@ def separation_triples(runs, configs):
     return tuple(sorted(out))
 
 
+def linked_families(pairs):
+    """The pairs joined into families: each pair goes into the first family that holds either
+    of its members, else starts one (members in the order met)."""
+    families = []
+    for a, b in pairs:
+        family = next((f for f in families if a in f or b in f), None)
+        if family is None:
+            families.append([a, b])
+        else:
+            family += [c for c in (a, b) if c not in family]
+    return families
+
+
 def grid_chains(runs, configs):
     """The grid studies, {name: configurations, coarsest gas first}: each family of
     configurations that differ in their cells alone (grid_pairs), named by its coarsest; and
     each coarse configuration's two-grid series (after Deb & Tafti 2013), it and the
     configurations whose particle field is on its cells while the gas is refined, named
     '<coarsest> two-grid'. Only chains of two or more."""
-    chains = {}
     own_step = [c for c in configs if "gas_step" in runs[c]]  # the gas step's test, not a grid's
-    for a, b in grid_pairs(runs, [c for c in configs if c not in own_step]):
-        family = next((f for f in chains.values() if a in f or b in f), None)
-        if family is None:
-            chains[a] = [a, b]
-        else:
-            family += [c for c in (a, b) if c not in family]
+    chains = {f[0]: f for f in linked_families(grid_pairs(runs, [c for c in configs if c not in own_step]))}
     for config in configs:
         if runs[config].get("coupling", {}).get(BLOCK_KEY):
             coarse, _ = _block_matches(runs, configs, config)
@@ -614,15 +621,8 @@ class Replicates:
     def grid_families(self):
         """Rows of the grid figure: each chain of configurations that differ in their cells alone
         (grid_pairs), coarsest first, each separated run after its coarse one."""
-        families = []
-        for a, b in self.grid_pairs():
-            family = next((f for f in families if a in f or b in f), None)
-            if family is None:
-                families.append([a, b])
-            else:
-                family += [c for c in (a, b) if c not in family]
         cells = {c: len(self.report.records[self.groups[c][0]].x.ravel()) for c in self.groups}
-        out = [sorted(f, key=cells.get) for f in families]
+        out = [sorted(f, key=cells.get) for f in linked_families(self.grid_pairs())]
         for coarse, separated, fine in self.separation_triples():
             family = next(f for f in out if fine in f)
             family.insert(family.index(coarse) + 1, separated)
