@@ -127,6 +127,12 @@ SEED000_VARIANTS = {
                   ("system/blockMeshDict", r"\(0\.15(\s)", r"(0.45\g<1>", 4),
                   ("system/blockMeshDict", r"\nnx\s+15;", "\nnx      45;"),
                   ("system/controlDict", r"\(0\.075 ", "(0.225 ", 2)]),
+    "walls_free_slip": ("solids slip freely at the walls (slip, not noSlip): no wall shear holds the dense layers",
+                        [("0.orig/U.particles", r"walls\s*\{\s*type\s+noSlip;", "walls\n    {\n        type            slip;")]),
+    "no_friction": ("no frictional stress (Fr 1e-12 Pa, the frictional pressure and viscosity vanish): dense layers "
+                    "are not held as plugs", [(KINETIC, r"(\n\s*Fr\s+)0\.05;", r"\g<1>1e-12;")]),
+    "time_step_1e-4": ("the time step held at 1e-4 s or below (maxDeltaT 1e-4, not 1e-3): the time integration's own damping",
+                       [("system/controlDict", r"\nmaxDeltaT\s+1e-3;", "\nmaxDeltaT       1e-4;")]),
     "fine_grid": ("cells of 0.5 cm (30 x 90)",
                   [("system/blockMeshDict", r"\nnx\s+15;", "\nnx      30;"),
                    ("system/blockMeshDict", r"\nny\s+45;", "\nny      90;")]),
