@@ -48,6 +48,7 @@ from tfdem.errors import Reported  # noqa: E402
 from tfdem.outputs import OutputError, field, joined_series, pressure_series, probes, times  # noqa: E402
 
 TEMPLATE = os.path.join(HERE, "tfm_bubbling_bed")
+JET_TEMPLATE = os.path.join(HERE, "tfm_jet_bed")
 CACHE = os.environ.get("TFDEM_CACHE", os.path.join(HERE, "..", "..", ".cache"))
 # OpenFOAM's own kinetic-theory bed (300 um, e 0.8, 5 mm cells), which bubbles: taken from the
 # OpenFOAM source tarball that scripts/setup.sh downloads (Debian ships no tutorials)
@@ -56,10 +57,11 @@ RUNS = os.path.join(HERE, "runs", "tfm_mechanism")
 RESULTS = os.path.join(HERE, "results", "tfm_mechanism")
 KINETIC = "constant/turbulenceProperties.particles"
 PHASES = "constant/phaseProperties"
-WRITE_INTERVAL = {"seed000": 0.1, "fluidised_bed": 0.02}  # s, per template
+WRITE_INTERVAL = {"seed000": 0.1, "seed000_jet": 0.1, "fluidised_bed": 0.02}  # s, per template
 # Jenkins & Zhang (2002): the effective restitution of rough spheres, e - 3/2 mu exp(-3 mu),
-# for Table 1's e = 0.97 and the DEM's friction mu = 0.1
+# for Table 1's e and the DEM's friction mu: 0.97 and 0.1 (uniform bed), 0.86 and 0.2 (jet bed)
 E_EFFECTIVE = 0.97 - 1.5 * 0.1 * math.exp(-3 * 0.1)
+E_EFFECTIVE_JET = 0.86 - 1.5 * 0.2 * math.exp(-3 * 0.2)
 # The conservative granular pressure force, -grad P_s (tfm_models/kineticTheoryConservative.H)
 KINETIC_THEORY_LIBRARY = os.path.join(os.environ.get("TFDEM_BUILD", os.path.join(HERE, "..", "..", "build")),
                                       "tfm_models", "libtfdemKineticTheory.so")
@@ -83,6 +85,9 @@ SEED000_VARIANTS = {
                           [(KINETIC, r"(\n\s*e\s+)0\.97;", rf"\g<1>{E_EFFECTIVE:.4f};")]),
     "restitution_0.8": ("e = 0.8, OpenFOAM's fluidisedBed tutorial's value (a diagnosis)",
                         [(KINETIC, r"(\n\s*e\s+)0\.97;", r"\g<1>0.8;")]),
+    "restitution_0.7": ("e = 0.7 (a diagnosis: where the bed starts to bubble)",
+                        [(KINETIC, r"(\n\s*e\s+)0\.97;", r"\g<1>0.7;")]),
+    "restitution_0.6": ("e = 0.6 (a diagnosis)", [(KINETIC, r"(\n\s*e\s+)0\.97;", r"\g<1>0.6;")]),
     "restitution_0.5": ("e = 0.5 (a diagnosis)", [(KINETIC, r"(\n\s*e\s+)0\.97;", r"\g<1>0.5;")]),
     "no_viscosity": ("solids shear viscosity off (viscosityModel none)",
                      [(KINETIC, r"viscosityModel\s+Gidaspow;", "viscosityModel          none;")]),
@@ -137,6 +142,12 @@ SEED000_VARIANTS = {
                   [("system/blockMeshDict", r"\nnx\s+15;", "\nnx      30;"),
                    ("system/blockMeshDict", r"\nny\s+45;", "\nny      90;")]),
 }
+# The jet bed (Tsuji's, tfm_jet_bed): its steady spout against the same measures
+SEED000_JET_VARIANTS = {
+    "jet_template": ("the jet bed's template: e 0.86 (Table 1), otherwise as the uniform bed's", []),
+    "jet_restitution_0.695": (f"the jet bed at e = {E_EFFECTIVE_JET:.3f}, Jenkins & Zhang's effective e of Table 1's e and "
+                              "mu (0.86, 0.2)", [(KINETIC, r"(\n\s*e\s+)0\.86;", rf"\g<1>{E_EFFECTIVE_JET:.4f};")]),
+}
 PARTICLES_2_5_MM = [(PHASES, r"(\n\s*d\s+)3e-4;", r"\g<1>0.0025;"),
                     ("0/U.air", r"internalField\s+uniform \(0 0\.25 0\);", "internalField   uniform (0 1.92 0);"),
                     ("0/U.air", r"inletVelocity\s+uniform \(0 0\.25 0\);", "inletVelocity      uniform (0 1.92 0);")]
@@ -151,8 +162,9 @@ FLUIDISED_BED_VARIANTS = {
                                                        PARTICLES_2_5_MM + [(KINETIC, r"(\n\s*e\s+)0\.8;", r"\g<1>0.97;")]),
 }
 VARIANTS = {**{name: ("seed000",) + v for name, v in SEED000_VARIANTS.items()},
+            **{name: ("seed000_jet",) + v for name, v in SEED000_JET_VARIANTS.items()},
             **{name: ("fluidised_bed",) + v for name, v in FLUIDISED_BED_VARIANTS.items()}}
-DEFAULT_END_TIME = {"seed000": 6.0, "fluidised_bed": 0.6}  # s, unless a variant's own below
+DEFAULT_END_TIME = {"seed000": 6.0, "seed000_jet": 6.0, "fluidised_bed": 0.6}  # s, unless a variant's own below
 END_TIME = {"fluidised_bed_particles_2.5mm": 2.0, "fluidised_bed_particles_2.5mm_restitution_0.97": 2.0}
 CHANGES_AFTER_PREPARE = {"perturbed"}
 CHANGES_BEFORE_PREPARE = {"inlet_perturbed"}
@@ -267,7 +279,7 @@ def run_variant(name, end_time):
     shutil.rmtree(case, ignore_errors=True)
     os.makedirs(RUNS, exist_ok=True)
     template, _, edits = VARIANTS[name]
-    source = TEMPLATE if template == "seed000" else fluidised_bed_template()
+    source = {"seed000": TEMPLATE, "seed000_jet": JET_TEMPLATE}.get(template) or fluidised_bed_template()
     shutil.copytree(source, case, ignore=lambda folder, names: [n for n in names if is_output(n) and n != "0"])
     for path, pattern, replacement, *expected in edits:
         edit(os.path.join(case, path), pattern, replacement, *expected)
@@ -280,7 +292,7 @@ def run_variant(name, end_time):
         with open(os.path.join(case, f"log.{step}"), "w") as log:
             if subprocess.run([f"./{step}"], cwd=case, stdout=log, stderr=subprocess.STDOUT).returncode:
                 raise MechanismError(f"{name}: {step} failed; see {case}/log.{step}")
-    write_measures(case, os.path.join(RESULTS, name + ".csv"), WRITE_INTERVAL[template])
+    write_measures(case, os.path.join(RESULTS, name + ".csv"), template)
     return name
 
 
@@ -331,19 +343,37 @@ def pressure_drop(case):
         return []
 
 
-def write_measures(case, path, write_interval):
+def row_major(case):
+    """The cells' indices ordered row by row, left to right: a mesh of several blocks side by
+    side (the jet bed's) numbers its cells block by block, each block row by row, so sorting
+    by the cell centre's height (0/Cy, which Allprepare writes) and then by index gives that
+    order; None (the cells' own order) for a case without 0/Cy."""
+    if not os.path.exists(os.path.join(case, "0", "Cy")):
+        return None
+    cy = field(case, "0", "Cy")
+    return sorted(range(len(cy)), key=lambda k: (round(cy[k], 9), k))
+
+
+def rows_of(values, order):
+    return values if order is None or len(values) == 1 else [values[k] for k in order]
+
+
+def write_measures(case, path, template):
     """One row per write: the measures of the module's doc. The departure from the cells' mean
     is alpha_s less its cell's time mean over the run's second half: a steady lateral profile
-    (the walls') and horizontal layers moving as one (1-D waves, slugs) both give 0 there."""
+    (the walls') and horizontal layers moving as one (1-D waves, slugs) both give 0 there. The
+    jet bed's inlet is its jet alone, so its whole-bed support is left out (nan)."""
+    write_interval = WRITE_INTERVAL[template]
     nx, ny = grid(case)
-    rows = bed_rows(field(case, "0", "alpha.particles"), nx)
+    order = row_major(case)
+    rows = bed_rows(rows_of(field(case, "0", "alpha.particles"), order), nx)
     written = [name for name in times(case) if float(name) > 0]
-    alpha = {name: field(case, name, "alpha.particles") for name in written}
+    alpha = {name: rows_of(field(case, name, "alpha.particles"), order) for name in written}
     end = float(written[-1])
     late = [name for name in written if float(name) >= end / 2 - 1e-9]
     cell_mean = [sum(alpha[name][k] for name in late) / len(late) for k in range(nx * ny)]
     dp = pressure_drop(case)
-    support = whole_bed_support(case)
+    support = whole_bed_support(case) if template != "seed000_jet" else []
     os.makedirs(os.path.dirname(path), exist_ok=True)
     with open(path, "w", newline="") as f:
         out = csv.writer(f)
@@ -353,7 +383,7 @@ def write_measures(case, path, write_interval):
                       "whole-bed dp / bed weight, mean over the write interval"])
         for name in written:
             t, a = float(name), alpha[name]
-            theta = field(case, name, "Theta.particles")
+            theta = rows_of(field(case, name, "Theta.particles"), order)
             theta = theta * len(a) if len(theta) == 1 else theta
             departure = [x - m for x, m in zip(a, cell_mean)]
             least = min(a[k] for k in range(rows[0] * nx, (rows[-1] + 1) * nx))
@@ -433,7 +463,7 @@ def main(argv=None):
         for name in VARIANTS:
             case = os.path.join(RUNS, name)
             if os.path.isdir(case) and len(times(case)) > 1:
-                write_measures(case, os.path.join(RESULTS, name + ".csv"), WRITE_INTERVAL[VARIANTS[name][0]])
+                write_measures(case, os.path.join(RESULTS, name + ".csv"), VARIANTS[name][0])
     if args.command in ("measure", "report"):
         report()
         return 0

@@ -10,6 +10,7 @@ its committed table against its committed measures:
 - the second-half summary of a hand-made series, the Δp std from the intervals' means and
   spreads (the law of total variance);
 - the inlet perturbation: one velocity per inlet face, the mean inflow kept;
+- the jet bed's cells, numbered block by block, put in rows by their heights;
 - results/tfm_mechanism.md is what report_text() makes of results/tfm_mechanism/*.csv.
 """
 import csv
@@ -90,6 +91,17 @@ with tempfile.TemporaryDirectory() as case:
     close("inlet perturbation: the mean inflow kept", sum(values) / 3, 2.0, 1e-8)
     check("inlet perturbation: within +-10 % (rescaled) and not uniform",
           all(abs(v / 2 - 1) < 0.1 / 0.9 + 1e-9 for v in values) and max(values) - min(values) > 1e-3, str(values))
+
+# the jet bed's mesh: three blocks side by side (2, 1 and 2 cells wide, 2 rows) numbered block
+# by block; row by row, left to right, that is cells 0 1 | 4 | 6 7, then 2 3 | 5 | 8 9
+with tempfile.TemporaryDirectory() as case:
+    os.makedirs(os.path.join(case, "0"))
+    heights = [0.5, 0.5, 1.5, 1.5, 0.5, 1.5, 0.5, 0.5, 1.5, 1.5]
+    with open(os.path.join(case, "0", "Cy"), "w") as f:
+        f.write("internalField   nonuniform List<scalar> 10\n(\n" + "\n".join(map(str, heights)) + "\n)\n;\n")
+    order = mechanism.row_major(case)
+    check("three blocks' cells in rows, left to right", order == [0, 1, 4, 6, 7, 2, 3, 5, 8, 9], str(order))
+    check("a case without 0/Cy keeps its cells' order", mechanism.row_major(os.path.join(case, "none")) is None)
 
 mechanism.RESULTS = os.path.join(STUDIES, "seed000", "results", "tfm_mechanism")
 text, missing = mechanism.report_text()
