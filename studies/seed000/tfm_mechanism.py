@@ -81,6 +81,9 @@ SEED000_VARIANTS = {
                  "Carnahan-Starling g0, friction from 0.58, Theta fixed at the inlet, zero gradient at the walls", []),
     "pressure_conservative": ("the solids pressure force as -grad P_s (MFIX's form), not -p' grad alpha_s: "
                               "adds -(P_s/Theta) grad Theta (tfm_models/kineticTheoryConservative)", CONSERVATIVE),
+    "pressure_conservative_restitution_0.6": ("-grad P_s (as pressure_conservative) at e = 0.6, where the template bubbles "
+                                              "(a diagnosis: does MFIX's form steady a bed that bubbles?)",
+                                              CONSERVATIVE + [(KINETIC, r"(\n\s*e\s+)0\.97;", r"\g<1>0.6;")]),
     "restitution_0.859": (f"e = {E_EFFECTIVE:.3f}, Jenkins & Zhang's effective e of Table 1's e and mu",
                           [(KINETIC, r"(\n\s*e\s+)0\.97;", rf"\g<1>{E_EFFECTIVE:.4f};")]),
     "restitution_0.8": ("e = 0.8, OpenFOAM's fluidisedBed tutorial's value (a diagnosis)",
