@@ -11,7 +11,8 @@ its committed table against its committed measures:
   spreads (the law of total variance);
 - the inlet perturbation: one velocity per inlet face, the mean inflow kept;
 - the jet bed's cells, numbered block by block, put in rows by their heights;
-- results/tfm_mechanism.md is what report_text() makes of results/tfm_mechanism/*.csv.
+- results/tfm_mechanism.md is what report_text() makes of results/tfm_mechanism/*.csv;
+- tfm_README's count of changes that leave the bed in layers is the measures'.
 """
 import csv
 import math
@@ -109,6 +110,15 @@ with open(os.path.join(STUDIES, "seed000", "results", "tfm_mechanism.md")) as f:
     check("results/tfm_mechanism.md is the report of the committed measures", f.read() == text,
           "run tfm_mechanism.py report")
 check("every variant's measures are committed", not missing, " ".join(missing))
+
+# tfm_README's count of the uniform bed's changes that stay below the bound, from the measures
+changes = [n for n in mechanism.SEED000_VARIANTS if n != "template"]
+layered = [n for n in changes if mechanism.summary(n)["departure_std"] <= mechanism.BUBBLING]
+with open(os.path.join(STUDIES, "seed000", "tfm_README.md")) as f:
+    stated = re.search(r"Over (\d+) of the (\d+) changes", f.read())
+check("tfm_README's count of changes that leave layers", stated is not None and
+      (int(stated.group(1)), int(stated.group(2))) == (len(layered), len(changes)),
+      f"stated {stated.groups() if stated else None}, measured {len(layered)} of {len(changes)}")
 
 print(f"{len(failures)} failed" if failures else "all passed")
 sys.exit(1 if failures else 0)
