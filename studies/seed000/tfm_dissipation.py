@@ -87,8 +87,11 @@ def dissipation_scale(particles, grid, density, components=3):
 
 def dissipation_scale_fields(run, time_name, grid, density, diameter):
     """S from the coupler's fields at a write time: alpha = 1 - voidFraction, Theta =
-    granularTemperature, each cell of volume V."""
+    granularTemperature, each cell of volume V; nan for a run that did not write them (particle
+    statistics off)."""
     volume = grid.spacing[0] * grid.spacing[1] * grid.spacing[2]
+    if not all(os.path.isfile(os.path.join(run, time_name, n)) for n in ("voidFraction", "granularTemperature")):
+        return math.nan
     void, theta = field(run, time_name, "voidFraction"), field(run, time_name, "granularTemperature")
     return sum(12 * carnahan_starling(1 - eps) * density * (1 - eps) ** 2 * max(t, 0.0) ** 1.5 * volume
                / (diameter * math.sqrt(math.pi)) for eps, t in zip(void, theta))
@@ -120,8 +123,6 @@ def samples(run, since):
         except (OSError, OutputError) as error:
             raise Reported(f"{path}: {error}")
         written = f"{t:g}"
-        if not os.path.isdir(os.path.join(run, written)):
-            raise Reported(f"{run}: no field folder {written} beside {path}. Fix: a run that kept its writes")
         mean_d = sum(p["diameter"]) / len(p["diameter"])
         out.append((t, input_power(p, density, gravity), dissipation_scale(p, grid, density),
                     dissipation_scale(p, grid, density, components=2),
@@ -130,6 +131,7 @@ def samples(run, since):
 
 
 def effective(d, s):
+    """sqrt(1 - d / s); nan where no restitution in [0, 1] gives it (or s is unknown)."""
     return math.sqrt(1 - d / s) if 0 <= d <= s else math.nan
 
 
