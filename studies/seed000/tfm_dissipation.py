@@ -25,7 +25,8 @@ particles has no Theta and adds nothing. With S = sum_cells 12 g0 rho_s alpha^2 
     e_eff = sqrt(1 - D / <S>).
 
 Each sample is one particle file; D and <S> are means over the files from --from on, and
-over the realizations given. e_eff2d repeats it with the 2-D temperature (|v - v_cell|^2) / 2
+over the realizations given; D's error is the realizations' standard error, or that of their
+own samples where larger. e_eff2d repeats it with the 2-D temperature (|v - v_cell|^2) / 2
 of these one-layer beds, whose particles move in x and y only. e_eff_fields takes alpha and
 Theta instead from the fields the coupler wrote at the same times (voidFraction, filtered with
 the run's bandwidth; granularTemperature, eq. 6 with the 3-D convention): a check on the
@@ -149,7 +150,8 @@ def main(argv=None):
         print(error, file=sys.stderr)
         return 1
     rows = []
-    for name, values in per_run.items():
+    for path, values in per_run.items():
+        name = os.path.basename(os.path.normpath(path))
         d, s, s2, sf = ([v[k] for v in values] for k in (1, 2, 3, 4))
         rows.append([name, len(values), statistics.mean(d), statistics.stdev(d) / math.sqrt(len(d)),
                      statistics.mean(s), effective(statistics.mean(d), statistics.mean(s)),
@@ -157,7 +159,9 @@ def main(argv=None):
                      effective(statistics.mean(d), statistics.mean(sf))])
     means_d = [r[2] for r in rows]
     d_all = statistics.mean(means_d)
-    d_err = statistics.stdev(means_d) / math.sqrt(len(means_d)) if len(means_d) > 1 else math.nan
+    # the realizations' scatter, or their own samples' errors where that is larger (two runs)
+    within = math.sqrt(sum(r[3] ** 2 for r in rows)) / len(rows)
+    d_err = max(statistics.stdev(means_d) / math.sqrt(len(means_d)), within) if len(means_d) > 1 else within
     s_all, s2_all, sf_all = (statistics.mean(v[k] for values in per_run.values() for v in values)
                              for k in (2, 3, 4))
     rows.append(["all", sum(r[1] for r in rows), d_all, d_err, s_all, effective(d_all, s_all),
