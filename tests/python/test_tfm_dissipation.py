@@ -14,24 +14,12 @@ import os
 import sys
 import tempfile
 
+from checks import check, close, finish
 from tfdem import STUDIES
 from tfdem.case import Grid
 
 sys.path.insert(0, os.path.join(STUDIES, "seed000"))
 import tfm_dissipation as dissipation  # noqa: E402
-
-failures = []
-
-
-def check(name, condition, detail=""):
-    print(("PASS " if condition else "FAIL ") + name + (f" {detail}" if detail else ""))
-    if not condition:
-        failures.append(name)
-
-
-def close(name, value, expected, tol=1e-7):
-    check(name, abs(value - expected) <= tol * max(1.0, abs(expected)), f"{value!r} vs {expected!r}")
-
 
 pair = {"diameter": [0.01, 0.01], "velocity": [(1, 2, 0), (0, -1, 0)], "fluidForce": [(3, 4, 0), (0, 0, 0)]}
 close("power of gas and gravity on two spheres", dissipation.input_power(pair, 1000.0, 10.0), 10.994764012)
@@ -49,5 +37,4 @@ with tempfile.TemporaryDirectory() as folder:
     code = dissipation.main([folder, "--csv", os.path.join(folder, "out.csv")])
     check("a run without particle files: exit 1", code == 1)
 
-print(f"{len(failures)} failed" if failures else "all passed")
-sys.exit(1 if failures else 0)
+finish()

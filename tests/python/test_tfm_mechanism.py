@@ -21,22 +21,16 @@ import re
 import sys
 import tempfile
 
+import checks
+from checks import check, finish
 from tfdem import STUDIES
 
 sys.path.insert(0, os.path.join(STUDIES, "seed000"))
 import tfm_mechanism as mechanism  # noqa: E402
 
-failures = []
-
-
-def check(name, condition, detail=""):
-    print(("PASS " if condition else "FAIL ") + name + (f" {detail}" if detail else ""))
-    if not condition:
-        failures.append(name)
-
 
 def close(name, value, expected, tol=1e-12):
-    check(name, abs(value - expected) <= tol, f"{value!r} vs {expected!r}")
+    checks.close(name, value, expected, tol)
 
 
 close("lateral std, rows (0.5, 0.3) and (0.4, 0.4)", mechanism.lateral_std([0.5, 0.3, 0.4, 0.4], 2, [0, 1]), 0.05)
@@ -120,5 +114,4 @@ check("tfm_README's count of changes that leave layers", stated is not None and
       (int(stated.group(1)), int(stated.group(2))) == (len(layered), len(changes)),
       f"stated {stated.groups() if stated else None}, measured {len(layered)} of {len(changes)}")
 
-print(f"{len(failures)} failed" if failures else "all passed")
-sys.exit(1 if failures else 0)
+finish()
