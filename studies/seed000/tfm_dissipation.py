@@ -123,6 +123,10 @@ def samples(run, since):
             p = vtk_particles(path)
         except (OSError, OutputError) as error:
             raise Reported(f"{path}: {error}")
+        missing = [name for name in ("diameter", "velocity", "fluidForce") if name not in p]
+        if missing:
+            raise Reported(f"{path}: no {', '.join(missing)} in this particle file (a coupler older than its "
+                           "fluidForce output). Fix: run the case again with this TFDEM")
         written = f"{t:g}"
         mean_d = sum(p["diameter"]) / len(p["diameter"])
         out.append((t, input_power(p, density, gravity), dissipation_scale(p, grid, density),
@@ -166,14 +170,21 @@ def main(argv=None):
                              for k in (2, 3, 4))
     rows.append(["all", sum(r[1] for r in rows), d_all, d_err, s_all, effective(d_all, s_all),
                  effective(d_all, s2_all), effective(d_all, sf_all)])
-    os.makedirs(os.path.dirname(os.path.abspath(args.csv)), exist_ok=True)
-    with open(args.csv + ".tmp", "w", newline="") as f:
-        out = csv.writer(f)
-        out.writerow(["run", "particle files", "D = <P> (W)", "D standard error (W)",
-                      "<S> (W per unit 1 - e^2)", "e_eff", "e_eff2d", "e_eff_fields"])
-        for r in rows:
-            out.writerow([r[0], r[1]] + [f"{x:.6g}" for x in r[2:]])
-    os.replace(args.csv + ".tmp", args.csv)
+    try:
+        os.makedirs(os.path.dirname(os.path.abspath(args.csv)), exist_ok=True)
+        with open(args.csv + ".tmp", "w", newline="") as f:
+            out = csv.writer(f)
+            out.writerow(["run", "particle files", "D = <P> (W)", "D standard error (W)",
+                          "<S> (W per unit 1 - e^2)", "e_eff", "e_eff2d", "e_eff_fields"])
+            for r in rows:
+                out.writerow([r[0], r[1]] + [f"{x:.6g}" for x in r[2:]])
+        os.replace(args.csv + ".tmp", args.csv)
+    except OSError as error:
+        if os.path.isfile(args.csv + ".tmp"):
+            os.remove(args.csv + ".tmp")
+        print(f"--csv {args.csv}: cannot write it ({error.strerror}). Fix: a file path in a writable folder",
+              file=sys.stderr)
+        return 1
     for r in rows:
         print(f"{r[0]:<16} {r[1]:3d} files  D = {r[2]:.4g} ± {r[3]:.2g} W  <S> = {r[4]:.4g} W  "
               f"e_eff = {r[5]:.3f}  (2-D Theta: {r[6]:.3f}; the coupler's fields: {r[7]:.3f})")

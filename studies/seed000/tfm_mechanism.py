@@ -68,6 +68,11 @@ KINETIC_THEORY_LIBRARY = os.path.join(os.environ.get("TFDEM_BUILD", os.path.join
 CONSERVATIVE = [(KINETIC, r"RASModel\s+kineticTheory;", "RASModel        kineticTheoryConservative;"),
                 (KINETIC, r"kineticTheoryCoeffs", "kineticTheoryConservativeCoeffs"),
                 ("system/controlDict", r"\napplication\s", f'\nlibs            ("{os.path.abspath(KINETIC_THEORY_LIBRARY)}");\napplication ')]
+def restitution(e, template_e="0.97"):
+    """The edit that sets the particle-particle restitution, from the template's value."""
+    return (KINETIC, rf"(\n\s*e\s+){re.escape(template_e)};", rf"\g<1>{e};")
+
+
 PERTURBATION = 0.02  # relative, uniform per cell, of the packed bed's alpha_s
 INLET_PERTURBATION = 0.1  # relative, uniform per inlet face, of the inflow velocity (held in time)
 # A bed of bubbles: the rows' lateral std of alpha_s's departure from its cell's time mean
@@ -83,15 +88,15 @@ SEED000_VARIANTS = {
                               "adds -(P_s/Theta) grad Theta (tfm_models/kineticTheoryConservative)", CONSERVATIVE),
     "pressure_conservative_restitution_0.6": ("-grad P_s (as pressure_conservative) at e = 0.6, where the template bubbles "
                                               "(a diagnosis: does MFIX's form steady a bed that bubbles?)",
-                                              CONSERVATIVE + [(KINETIC, r"(\n\s*e\s+)0\.97;", r"\g<1>0.6;")]),
+                                              CONSERVATIVE + [restitution("0.6")]),
     "restitution_0.859": (f"e = {E_EFFECTIVE:.3f}, Jenkins & Zhang's effective e of Table 1's e and mu",
-                          [(KINETIC, r"(\n\s*e\s+)0\.97;", rf"\g<1>{E_EFFECTIVE:.4f};")]),
+                          [restitution(f"{E_EFFECTIVE:.4f}")]),
     "restitution_0.8": ("e = 0.8, OpenFOAM's fluidisedBed tutorial's value (a diagnosis)",
-                        [(KINETIC, r"(\n\s*e\s+)0\.97;", r"\g<1>0.8;")]),
+                        [restitution("0.8")]),
     "restitution_0.7": ("e = 0.7 (a diagnosis: where the bed starts to bubble)",
-                        [(KINETIC, r"(\n\s*e\s+)0\.97;", r"\g<1>0.7;")]),
-    "restitution_0.6": ("e = 0.6 (a diagnosis)", [(KINETIC, r"(\n\s*e\s+)0\.97;", r"\g<1>0.6;")]),
-    "restitution_0.5": ("e = 0.5 (a diagnosis)", [(KINETIC, r"(\n\s*e\s+)0\.97;", r"\g<1>0.5;")]),
+                        [restitution("0.7")]),
+    "restitution_0.6": ("e = 0.6 (a diagnosis)", [restitution("0.6")]),
+    "restitution_0.5": ("e = 0.5 (a diagnosis)", [restitution("0.5")]),
     "no_viscosity": ("solids shear viscosity off (viscosityModel none)",
                      [(KINETIC, r"viscosityModel\s+Gidaspow;", "viscosityModel          none;")]),
     "pressure_syamlal": ("granular pressure of Syamlal, Rogers & O'Brien (no kinetic alpha rho Theta term)",
@@ -149,7 +154,7 @@ SEED000_VARIANTS = {
 SEED000_JET_VARIANTS = {
     "jet_template": ("the jet bed's template: e 0.86 (Table 1), otherwise as the uniform bed's", []),
     "jet_restitution_0.695": (f"the jet bed at e = {E_EFFECTIVE_JET:.3f}, Jenkins & Zhang's effective e of Table 1's e and "
-                              "mu (0.86, 0.2)", [(KINETIC, r"(\n\s*e\s+)0\.86;", rf"\g<1>{E_EFFECTIVE_JET:.4f};")]),
+                              "mu (0.86, 0.2)", [restitution(f"{E_EFFECTIVE_JET:.4f}", "0.86")]),
 }
 PARTICLES_2_5_MM = [(PHASES, r"(\n\s*d\s+)3e-4;", r"\g<1>0.0025;"),
                     ("0/U.air", r"internalField\s+uniform \(0 0\.25 0\);", "internalField   uniform (0 1.92 0);"),
@@ -158,11 +163,11 @@ FLUIDISED_BED_VARIANTS = {
     "fluidised_bed": ("OpenFOAM's RAS/fluidisedBed as shipped: 300 um, U 0.25 m/s, e 0.8, Sinclair-Jackson g0, "
                       "friction from 0.5, 5 mm cells", []),
     "fluidised_bed_restitution_0.97": ("the same with e = 0.97, seed 000's",
-                                       [(KINETIC, r"(\n\s*e\s+)0\.8;", r"\g<1>0.97;")]),
+                                       [restitution("0.97", "0.8")]),
     "fluidised_bed_particles_2.5mm": ("the same with seed 000's particles and inflow: d 2.5 mm, U 1.92 m/s",
                                       PARTICLES_2_5_MM),
     "fluidised_bed_particles_2.5mm_restitution_0.97": ("the same with d 2.5 mm, U 1.92 m/s and e = 0.97",
-                                                       PARTICLES_2_5_MM + [(KINETIC, r"(\n\s*e\s+)0\.8;", r"\g<1>0.97;")]),
+                                                       PARTICLES_2_5_MM + [restitution("0.97", "0.8")]),
 }
 VARIANTS = {**{name: ("seed000",) + v for name, v in SEED000_VARIANTS.items()},
             **{name: ("seed000_jet",) + v for name, v in SEED000_JET_VARIANTS.items()},
