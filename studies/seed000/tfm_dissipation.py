@@ -11,8 +11,8 @@ gas and gravity put into the particles,
 
 averages to the rate D at which the contacts (particle-particle and walls) dissipate, since the
 particles' kinetic and potential energy return over the run. Kinetic theory's collisional
-dissipation for the same particles (Lun et al. 1984, J. Fluid Mech. 140; the gamma of
-twoPhaseEulerFoam's kineticTheory) is, per unit volume,
+dissipation for the same particles (seed 000 eq. 5's J_sm,coll, in the form of Lun et al. 1984,
+J. Fluid Mech. 140, the gamma of twoPhaseEulerFoam's kineticTheory) is, per unit volume,
 
     Gamma = 12 (1 - e^2) g0(alpha) rho_s alpha^2 Theta^(3/2) / (d sqrt(pi)),
 
