@@ -73,6 +73,29 @@ def restitution(e, template_e="0.97"):
     return (KINETIC, rf"(\n\s*e\s+){re.escape(template_e)};", rf"\g<1>{e};")
 
 
+def minimum_fluidization(rho_g, mu, d=0.0025, rho_s=2526.0, g=9.81):
+    """U_mf (m/s) of Wen & Yu (1966, Chem. Eng. Prog. Symp. Ser. 62): Re_mf = sqrt(33.7^2 +
+    0.0408 Ar) - 33.7, Ar = rho_g (rho_s - rho_g) g d^3 / mu^2; for Geldart B and D spheres."""
+    archimedes = rho_g * (rho_s - rho_g) * g * d ** 3 / mu ** 2
+    return (math.sqrt(33.7 ** 2 + 0.0408 * archimedes) - 33.7) * mu / (rho_g * d)
+
+
+# OpenFOAM's fluidisedBed gas: air as a perfect gas at 600 K and 1e5 Pa (molar mass 28.9 g/mol)
+HOT_AIR_DENSITY = 1e5 * 0.0289 / (8.314 * 600)  # kg/m3, 0.579
+HOT_AIR_VISCOSITY = 1.84e-5  # Pa s
+U_SEED000 = 1.92  # m/s, Table 1: 1.5 U_mf
+# The inflow that puts seed 000's air at the tutorial's hot air's U/U_mf (1.92 m/s over its U_mf)
+U_AT_HOT_AIR_RATIO = U_SEED000 / minimum_fluidization(HOT_AIR_DENSITY, HOT_AIR_VISCOSITY, rho_s=2500) \
+    * minimum_fluidization(1.2, 1.8e-5)
+HOT_AIR = [("constant/thermophysicalProperties.air", r"\n(\s*)rho\s+1\.2;", rf"\n\g<1>rho         {HOT_AIR_DENSITY:.4f};"),
+           ("constant/thermophysicalProperties.air", r"mu\s+1\.8e-05;", f"mu          {HOT_AIR_VISCOSITY:g};")]
+
+
+def inflow(u):
+    """The edits that set the template's inflow (superficial, m/s) from 1.92."""
+    return [("0.orig/U.air", r"uniform \(0 1\.92 0\)", f"uniform (0 {u:.4f} 0)", 2)]
+
+
 PERTURBATION = 0.02  # relative, uniform per cell, of the packed bed's alpha_s
 INLET_PERTURBATION = 0.1  # relative, uniform per inlet face, of the inflow velocity (held in time)
 # A bed of bubbles: the rows' lateral std of alpha_s's departure from its cell's time mean
@@ -146,6 +169,13 @@ SEED000_VARIANTS = {
                     "are not held as plugs", [(KINETIC, r"(\n\s*Fr\s+)0\.05;", r"\g<1>1e-12;")]),
     "time_step_1e-4": ("the time step held at 1e-4 s or below (maxDeltaT 1e-4, not 1e-3): the time integration's own damping",
                        [("system/controlDict", r"\nmaxDeltaT\s+1e-3;", "\nmaxDeltaT       1e-4;")]),
+    "air_600K": (f"the gas of OpenFOAM's fluidisedBed: {HOT_AIR_DENSITY:.2f} kg/m3 and {HOT_AIR_VISCOSITY:g} Pa s "
+                 "(air at 600 K), not 1.2 kg/m3 and 1.8e-5 Pa s, at the same 1.92 m/s (1.13 U_mf of that gas)", HOT_AIR),
+    "air_600K_restitution_0.8": ("the fluidisedBed tutorial's gas (as air_600K) at its e = 0.8 (a diagnosis: the two "
+                                 "settings in which the shallow tutorial differs from restitution_0.8)",
+                                 HOT_AIR + [restitution("0.8")]),
+    "inflow_1.13_umf": (f"the inflow at {U_AT_HOT_AIR_RATIO:.2f} m/s, the hot-air tutorial's U/U_mf, not 1.5 U_mf",
+                        inflow(U_AT_HOT_AIR_RATIO)),
     "fine_grid": ("cells of 0.5 cm (30 x 90)",
                   [("system/blockMeshDict", r"\nnx\s+15;", "\nnx      30;"),
                    ("system/blockMeshDict", r"\nny\s+45;", "\nny      90;")]),
@@ -169,11 +199,38 @@ FLUIDISED_BED_VARIANTS = {
     "fluidised_bed_particles_2.5mm_restitution_0.97": ("the same with d 2.5 mm, U 1.92 m/s and e = 0.97",
                                                        PARTICLES_2_5_MM + [restitution("0.97", "0.8")]),
 }
+# The 2.5 mm tutorial at its own e 0.8 with seed 000's inventory (a bed 15.9 cm deep, not 50 cm:
+# it forms voids), then changed one setting at a time towards seed 000's template at e 0.8
+# (restitution_0.8, flat layers): which difference keeps our bed in layers?
+SEED000_INVENTORY_HEIGHT = 4000 * math.pi * 0.0025 ** 2 / 6 / (0.15 * 0.55)  # m: 4000 spheres at the tutorial's 0.55
+SHALLOW = [("system/setFieldsDict", r"\(0\.15 0\.5 0\.1\)", f"(0.15 {SEED000_INVENTORY_HEIGHT:.4f} 0.1)"),
+           ("Allprepare", r"(blockMesh > log\.blockMesh 2>&1\n)",
+            r"\g<1>for a in air particles; do cp 0/alpha.$a.orig 0/alpha.$a; done\nsetFields > log.setFields 2>&1\n")]
+TOWARDS_SEED000 = {
+    "fluidised_bed_2.5mm_shallow_bed": (f"the 2.5 mm tutorial with seed 000's inventory: the bed "
+                                        f"{SEED000_INVENTORY_HEIGHT * 100:.1f} cm deep at alpha_s 0.55, not 50 cm", []),
+    "fluidised_bed_2.5mm_shallow_air_seed000": ("the shallow 2.5 mm tutorial with seed 000's air: 1.2 kg/m3 and "
+                                                "1.8e-5 Pa s, not a perfect gas at 600 K and 1 bar (0.58 kg/m3, 1.84e-5 Pa s)",
+                                                [("constant/thermophysicalProperties.air", r"equationOfState perfectGas;",
+                                                  "equationOfState rhoConst;"),
+                                                 ("constant/thermophysicalProperties.air", r"(\n\s*thermodynamics\s*\{)",
+                                                  r"\n    equationOfState\n    {\n        rho         1.2;\n    }\g<1>"),
+                                                 ("constant/thermophysicalProperties.air", r"mu\s+1\.84e-05;",
+                                                  "mu          1.8e-05;")]),
+    "fluidised_bed_2.5mm_shallow_laminar_gas": ("the shallow 2.5 mm tutorial with the gas laminar, not k-epsilon "
+                                                "(seed 000's template's)",
+                                                [("constant/turbulenceProperties.air", r"simulationType\s+RAS;",
+                                                  "simulationType  laminar;")]),
+    "fluidised_bed_2.5mm_shallow_cells_1cm": ("the shallow 2.5 mm tutorial on seed 000's 1 cm cells (15 x 100), not 5 mm",
+                                              [("system/blockMeshDict", r"\(30 200 1\)", "(15 100 1)")]),
+}
+FLUIDISED_BED_VARIANTS.update({name: (what, PARTICLES_2_5_MM + SHALLOW + changes) for name, (what, changes) in TOWARDS_SEED000.items()})
 VARIANTS = {**{name: ("seed000",) + v for name, v in SEED000_VARIANTS.items()},
             **{name: ("seed000_jet",) + v for name, v in SEED000_JET_VARIANTS.items()},
             **{name: ("fluidised_bed",) + v for name, v in FLUIDISED_BED_VARIANTS.items()}}
 DEFAULT_END_TIME = {"seed000": 6.0, "seed000_jet": 6.0, "fluidised_bed": 0.6}  # s, unless a variant's own below
-END_TIME = {"fluidised_bed_particles_2.5mm": 2.0, "fluidised_bed_particles_2.5mm_restitution_0.97": 2.0}
+END_TIME = {"fluidised_bed_particles_2.5mm": 2.0, "fluidised_bed_particles_2.5mm_restitution_0.97": 2.0,
+            **{name: 2.0 for name in TOWARDS_SEED000}}
 CHANGES_AFTER_PREPARE = {"perturbed"}
 CHANGES_BEFORE_PREPARE = {"inlet_perturbed"}
 
@@ -455,6 +512,64 @@ def report():
         print("not run: " + " ".join(missing))
 
 
+SNAPSHOTS = os.path.join(RESULTS, "snapshots")
+
+
+def write_snapshots(name, count=6):
+    """alpha_s of `count` writes evenly spread over the run's second half, one line per row of
+    cells (bottom first): results/tfm_mechanism/snapshots/<variant>.csv, the figure's input."""
+    case = os.path.join(RUNS, name)
+    nx, ny = grid(case)
+    written = [t for t in times(case) if float(t) > 0]
+    late = [t for t in written if float(t) >= float(written[-1]) / 2 - 1e-9]
+    chosen = [late[round(k * (len(late) - 1) / (count - 1))] for k in range(count)]
+    lo, hi = Case(case).mesh_bounds()
+    os.makedirs(SNAPSHOTS, exist_ok=True)
+    with open(os.path.join(SNAPSHOTS, name + ".csv"), "w", newline="") as f:
+        out = csv.writer(f)
+        out.writerow(["t (s)", "row", f"alpha_s of the row's {nx} cells, left to right; cells "
+                      f"{(hi[0] - lo[0]) / nx * 100:g} x {(hi[1] - lo[1]) / ny * 100:g} cm"])
+        order = row_major(case)
+        for t in chosen:
+            alpha = rows_of(field(case, t, "alpha.particles"), order)
+            for j in range(ny):
+                out.writerow([t, j] + [f"{a:.4g}" for a in alpha[j * nx:(j + 1) * nx]])
+
+
+def read_snapshots(name):
+    """{t: rows of alpha_s} and (cell width, cell height) in cm, from the snapshot file."""
+    with open(os.path.join(SNAPSHOTS, name + ".csv")) as f:
+        rows = list(csv.reader(f))
+    found = re.search(r"cells (\S+) x (\S+) cm", ",".join(rows[0]))
+    frames = {}
+    for row in rows[1:]:
+        frames.setdefault(row[0], []).append([float(a) for a in row[2:]])
+    return frames, (float(found.group(1)), float(found.group(2)))
+
+
+def draw_snapshots(names, path, height_cm=30):
+    """One column of panels per variant, alpha_s at each snapshot, the lowest height_cm shown."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    data = [read_snapshots(name) for name in names]
+    count = max(len(frames) for frames, _ in data)
+    fig, axes = plt.subplots(len(names), count, figsize=(1.3 * count, 2.9 * len(names)), squeeze=False)
+    for row, (name, (frames, (dx, dy))) in enumerate(zip(names, data)):
+        for col, (t, alpha) in enumerate(frames.items()):
+            ax = axes[row][col]
+            shown = alpha[:max(1, round(height_cm / dy))]
+            image = ax.imshow(shown, origin="lower", vmin=0, vmax=0.62, cmap="viridis",
+                              extent=(0, dx * len(shown[0]), 0, dy * len(shown)))
+            ax.set_title(f"{float(t):g} s", fontsize=8)
+            ax.tick_params(labelsize=7)
+            if col == 0:
+                ax.set_ylabel(f"{name}\nheight (cm)", fontsize=7)
+    fig.colorbar(image, ax=axes, shrink=0.6, label="solids fraction α_s")
+    fig.savefig(path, dpi=90, bbox_inches="tight")
+    plt.close(fig)
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -465,8 +580,26 @@ def main(argv=None):
                      help="s; default " + ", ".join(f"{v:g} s for {k}" for k, v in DEFAULT_END_TIME.items()))
     run.add_argument("--jobs", type=int, default=2)
     sub.add_parser("report", help="the table of the variants run")
+    snap = sub.add_parser("snapshots", help="keep alpha_s of six writes of the second half of runs in "
+                                            "results/tfm_mechanism/snapshots/")
+    snap.add_argument("variants", nargs="+", choices=list(VARIANTS), metavar="NAME")
+    figure = sub.add_parser("figure", help="draw kept snapshots, one row of panels per variant")
+    figure.add_argument("variants", nargs="+", choices=list(VARIANTS), metavar="NAME")
+    figure.add_argument("--out", required=True, help="PNG to write")
     sub.add_parser("measure", help="read the measures again from the runs in runs/tfm_mechanism/")
     args = parser.parse_args(argv)
+    if args.command == "snapshots":
+        for name in args.variants:
+            write_snapshots(name)
+        return 0
+    if args.command == "figure":
+        missing = [n for n in args.variants if not os.path.exists(os.path.join(SNAPSHOTS, n + ".csv"))]
+        if missing:
+            print(f"tfm_mechanism.py: no snapshots of {' '.join(missing)}: run `tfm_mechanism.py snapshots` "
+                  "on a finished run first", file=sys.stderr)
+            return 1
+        draw_snapshots(args.variants, args.out)
+        return 0
     if args.command == "measure":
         for name in VARIANTS:
             case = os.path.join(RUNS, name)

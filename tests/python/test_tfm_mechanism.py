@@ -12,7 +12,8 @@ its committed table against its committed measures:
 - the inlet perturbation: one velocity per inlet face, the mean inflow kept;
 - the jet bed's cells, numbered block by block, put in rows by their heights;
 - results/tfm_mechanism.md is what report_text() makes of results/tfm_mechanism/*.csv;
-- tfm_README's count of changes that leave the bed in layers is the measures'.
+- tfm_README's count of changes that leave the bed in layers is the measures';
+- a snapshot file of alpha_s read back as written.
 """
 import csv
 import math
@@ -97,6 +98,17 @@ with tempfile.TemporaryDirectory() as case:
     order = mechanism.row_major(case)
     check("three blocks' cells in rows, left to right", order == [0, 1, 4, 6, 7, 2, 3, 5, 8, 9], str(order))
     check("a case without 0/Cy keeps its cells' order", mechanism.row_major(os.path.join(case, "none")) is None)
+
+# snapshots: a hand-written file of two writes of a 2 x 2 grid of 5 mm x 1 cm cells read back
+with tempfile.TemporaryDirectory() as folder:
+    mechanism.SNAPSHOTS = folder
+    with open(os.path.join(folder, "hand.csv"), "w") as f:
+        f.write("t (s),row,alpha_s of the row's 2 cells, left to right; cells 0.5 x 1 cm\n"
+                "1,0,0.6,0.5\n1,1,0.1,0.2\n2,0,0.55,0.45\n2,1,0.3,0\n")
+    frames, cell = mechanism.read_snapshots("hand")
+check("snapshots: two writes, each two rows, bottom first",
+      frames == {"1": [[0.6, 0.5], [0.1, 0.2]], "2": [[0.55, 0.45], [0.3, 0.0]]}, str(frames))
+check("snapshots: the cell size from the header", cell == (0.5, 1.0), str(cell))
 
 mechanism.RESULTS = os.path.join(STUDIES, "seed000", "results", "tfm_mechanism")
 text, missing = mechanism.report_text()
