@@ -221,9 +221,43 @@ TOWARDS_SEED000 = {
                                                 "(seed 000's template's)",
                                                 [("constant/turbulenceProperties.air", r"simulationType\s+RAS;",
                                                   "simulationType  laminar;")]),
+    "fluidised_bed_2.5mm_shallow_radial_carnahan_starling": ("the shallow 2.5 mm tutorial with Carnahan & Starling's g0 "
+                                                             "(the template's)",
+                                                             [(KINETIC, r"radialModel\s+SinclairJackson;",
+                                                               "radialModel             CarnahanStarling;")]),
+    "fluidised_bed_2.5mm_shallow_friction_seed000": ("the shallow 2.5 mm tutorial with the template's friction: "
+                                                     "Johnson-Jackson-Schaeffer from alpha_s 0.58",
+                                                     [(KINETIC, r"alphaMinFriction\s+0\.5;", "alphaMinFriction        0.58;"),
+                                                      (KINETIC, r"JohnsonJackson;", "JohnsonJacksonSchaeffer;"),
+                                                      (KINETIC, r"JohnsonJacksonCoeffs", "JohnsonJacksonSchaefferCoeffs")]),
+    "fluidised_bed_2.5mm_shallow_time_step_adjustable": ("the shallow 2.5 mm tutorial with the template's time step: "
+                                                         "adjusted to Courant 0.5, at most 1 ms (not fixed at 0.2 ms)",
+                                                         [("system/controlDict", r"\nadjustTimeStep\s+no;",
+                                                           "\nadjustTimeStep  yes;"),
+                                                          ("system/controlDict", r"\nmaxCo\s+0\.9;", "\nmaxCo           0.5;"),
+                                                          ("system/controlDict", r"\nmaxDeltaT\s+1e-05;",
+                                                           "\nmaxDeltaT       1e-3;")]),
+    "fluidised_bed_2.5mm_shallow_face_momentum": ("the shallow 2.5 mm tutorial with faceMomentum yes (the template's)",
+                                                  [("system/fvSolution", r"(\n\s*nOuterCorrectors\s+3;)",
+                                                    r"\g<1>\n    faceMomentum     yes;")]),
+    "fluidised_bed_2.5mm_shallow_packed_0.6": ("the shallow 2.5 mm tutorial packed at alpha_s 0.6 (the template's), "
+                                               f"{SEED000_INVENTORY_HEIGHT * 0.55 / 0.6 * 100:.1f} cm deep, not at 0.55",
+                                               [("system/setFieldsDict", rf"\(0\.15 {SEED000_INVENTORY_HEIGHT:.4f} 0\.1\)",
+                                                 f"(0.15 {SEED000_INVENTORY_HEIGHT * 0.55 / 0.6:.4f} 0.1)"),
+                                                ("system/setFieldsDict", r"alpha\.air 0\.45", "alpha.air 0.4"),
+                                                ("system/setFieldsDict", r"alpha\.particles 0\.55", "alpha.particles 0.6")]),
+    "fluidised_bed_2.5mm_shallow_column_0.45m": ("the shallow 2.5 mm tutorial in a column 0.45 m tall (the template's), "
+                                                 "not 1 m, on the same 5 mm cells",
+                                                 [("system/blockMeshDict", r"\((0(?:\.15)?) 1 (-?0\.01)\)", r"(\g<1> 0.45 \g<2>)", 4),
+                                                  ("system/blockMeshDict", r"\(30 200 1\)", "(30 90 1)")]),
     "fluidised_bed_2.5mm_shallow_cells_1cm": ("the shallow 2.5 mm tutorial on seed 000's 1 cm cells (15 x 100), not 5 mm",
                                               [("system/blockMeshDict", r"\(30 200 1\)", "(15 100 1)")]),
 }
+# two of those changes together (each alone leaves the voids)
+for first, second in (("cells_1cm", "time_step_adjustable"), ("cells_1cm", "face_momentum")):
+    TOWARDS_SEED000[f"fluidised_bed_2.5mm_shallow_{first}_{second}"] = (
+        f"the shallow 2.5 mm tutorial with both {first} and {second} (as the two variants)",
+        TOWARDS_SEED000[f"fluidised_bed_2.5mm_shallow_{first}"][1] + TOWARDS_SEED000[f"fluidised_bed_2.5mm_shallow_{second}"][1])
 FLUIDISED_BED_VARIANTS.update({name: (what, PARTICLES_2_5_MM + SHALLOW + changes) for name, (what, changes) in TOWARDS_SEED000.items()})
 VARIANTS = {**{name: ("seed000",) + v for name, v in SEED000_VARIANTS.items()},
             **{name: ("seed000_jet",) + v for name, v in SEED000_JET_VARIANTS.items()},
