@@ -7,13 +7,17 @@ shipped and with seed 000's restitution; the same measures read from every run.
     tfm_mechanism.py run [--variants NAME ...] [--end-time T] [--jobs 2]
     tfm_mechanism.py report
     tfm_mechanism.py measure
+    tfm_mechanism.py snapshots NAME ...
+    tfm_mechanism.py figure NAME ... --out PNG
 
 `run` copies the variant's template to runs/tfm_mechanism/<variant>, makes its one change
 (VARIANTS below), writes the fields every WRITE_INTERVAL, runs Allprepare and Allsolve to the
 end time (END_TIME or DEFAULT_END_TIME unless given), and keeps the run's measures in
 results/tfm_mechanism/<variant>.csv (one row per write). `report` reads those files and writes
 results/tfm_mechanism.md (tfm_README.md quotes it); `measure` reads the measures again from the
-runs as they stand, then reports.
+runs as they stand, then reports. `snapshots` keeps alpha_s of six writes of a finished run's
+second half (results/tfm_mechanism/snapshots/<variant>.csv) and `figure` draws those files, a
+row of panels per variant (figures/tfm_bridge.png).
 
 Measures at each write, over the bed's rows of cells (those whose initial mean solids fraction
 is at least half the densest row's):
