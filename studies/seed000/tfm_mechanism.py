@@ -178,6 +178,22 @@ SEED000_VARIANTS = {
     "air_600K_restitution_0.8": ("the fluidisedBed tutorial's gas (as air_600K) at its e = 0.8 (a diagnosis: the two "
                                  "settings in which the shallow tutorial differs from restitution_0.8)",
                                  HOT_AIR + [restitution("0.8")]),
+    "air_compressible": ("the air a perfect gas (1.17 kg/m3 at 300 K and 1 atm), as the fluidisedBed tutorial's gas, "
+                         "not of constant density",
+                         [("constant/thermophysicalProperties.air", r"equationOfState rhoConst;",
+                           "equationOfState perfectGas;")]),
+    "air_compressible_restitution_0.8": ("the air a perfect gas (as air_compressible) at e = 0.8",
+                                         [("constant/thermophysicalProperties.air", r"equationOfState rhoConst;",
+                                           "equationOfState perfectGas;"), restitution("0.8")]),
+    "air_600K_compressible_restitution_0.8": ("the fluidisedBed tutorial's gas as it is there: a perfect gas at 600 K "
+                                              "(0.58 kg/m3), 1.84e-5 Pa s, both phases at 600 K, at e = 0.8",
+                                              [("constant/thermophysicalProperties.air", r"equationOfState rhoConst;",
+                                                "equationOfState perfectGas;"),
+                                               ("constant/thermophysicalProperties.air", r"mu\s+1\.8e-05;",
+                                                f"mu          {HOT_AIR_VISCOSITY:g};"),
+                                               ("0.orig/T.air", r"uniform 300;", "uniform 600;", 4),
+                                               ("0.orig/T.particles", r"uniform 300;", "uniform 600;", 4),
+                                               restitution("0.8")]),
     "inflow_1.13_umf": (f"the inflow at {U_AT_HOT_AIR_RATIO:.2f} m/s, the hot-air tutorial's U/U_mf, not 1.5 U_mf",
                         inflow(U_AT_HOT_AIR_RATIO)),
     "fine_grid": ("cells of 0.5 cm (30 x 90)",
@@ -221,6 +237,12 @@ TOWARDS_SEED000 = {
                                                   r"\n    equationOfState\n    {\n        rho         1.2;\n    }\g<1>"),
                                                  ("constant/thermophysicalProperties.air", r"mu\s+1\.84e-05;",
                                                   "mu          1.8e-05;")]),
+    "fluidised_bed_2.5mm_shallow_air_incompressible": ("the shallow 2.5 mm tutorial with its hot air of constant density "
+                                                       "(0.579 kg/m3, rhoConst), not a perfect gas",
+                                                       [("constant/thermophysicalProperties.air", r"equationOfState perfectGas;",
+                                                         "equationOfState rhoConst;"),
+                                                        ("constant/thermophysicalProperties.air", r"(\n\s*thermodynamics\s*\{)",
+                                                         rf"\n    equationOfState\n    {{\n        rho         {HOT_AIR_DENSITY:.4f};\n    }}\g<1>")]),
     "fluidised_bed_2.5mm_shallow_laminar_gas": ("the shallow 2.5 mm tutorial with the gas laminar, not k-epsilon "
                                                 "(seed 000's template's)",
                                                 [("constant/turbulenceProperties.air", r"simulationType\s+RAS;",
@@ -262,6 +284,16 @@ for first, second in (("cells_1cm", "time_step_adjustable"), ("cells_1cm", "face
     TOWARDS_SEED000[f"fluidised_bed_2.5mm_shallow_{first}_{second}"] = (
         f"the shallow 2.5 mm tutorial with both {first} and {second} (as the two variants)",
         TOWARDS_SEED000[f"fluidised_bed_2.5mm_shallow_{first}"][1] + TOWARDS_SEED000[f"fluidised_bed_2.5mm_shallow_{second}"][1])
+# the template's settings added one after another (the first two are cells_1cm_face_momentum):
+# where do the slugs become layers? On 1 cm cells the 0.45 m column is 45 rows.
+CHAIN = ("cells_1cm", "face_momentum", "time_step_adjustable", "laminar_gas", "radial_carnahan_starling",
+         "friction_seed000", "packed_0.6", "column_0.45m")
+CHAIN_EDITS = {name: TOWARDS_SEED000[f"fluidised_bed_2.5mm_shallow_{name}"][1] for name in CHAIN}
+CHAIN_EDITS["column_0.45m"] = [CHAIN_EDITS["column_0.45m"][0], ("system/blockMeshDict", r"\(15 100 1\)", "(15 45 1)")]
+for last in range(3, len(CHAIN) + 1):
+    TOWARDS_SEED000[f"fluidised_bed_2.5mm_shallow_chain_{last}"] = (
+        f"the shallow 2.5 mm tutorial with the template's first {last} settings: {', '.join(CHAIN[:last])}",
+        [change for name in CHAIN[:last] for change in CHAIN_EDITS[name]])
 FLUIDISED_BED_VARIANTS.update({name: (what, PARTICLES_2_5_MM + SHALLOW + changes) for name, (what, changes) in TOWARDS_SEED000.items()})
 VARIANTS = {**{name: ("seed000",) + v for name, v in SEED000_VARIANTS.items()},
             **{name: ("seed000_jet",) + v for name, v in SEED000_JET_VARIANTS.items()},
