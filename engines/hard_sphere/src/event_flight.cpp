@@ -440,7 +440,7 @@ void EventFlight::predict_boundaries(int i, const Vec3 &xi, const Vec3 &vi, doub
 }
 
 void EventFlight::push_event(int i, double time, int partner) {
-  heap_.push_back({time, i, partner, count_[i], partner >= 0 ? count_[partner] : 0});
+  heap_.push_back(event_of(i, time, partner));
   std::push_heap(heap_.begin(), heap_.end(), std::greater<Event>());
 }
 
@@ -467,9 +467,7 @@ void EventFlight::predict_all(double now, double end) {
   // in one O(N) pass (at most 3N comparisons), not by N pushes (O(N log N) at worst)
   for (int i = 0; i < n; ++i) {
     predict_boundaries(i, now_position_[i], motion_[i].v, now, best_time_[i], best_partner_[i]);
-    const int partner = best_partner_[i];
-    if (partner != std::numeric_limits<int>::min())
-      heap_.push_back({best_time_[i], i, partner, count_[i], partner >= 0 ? count_[partner] : 0});
+    if (best_partner_[i] != std::numeric_limits<int>::min()) heap_.push_back(event_of(i, best_time_[i], best_partner_[i]));
   }
   std::make_heap(heap_.begin(), heap_.end(), std::greater<Event>());
 }

@@ -166,6 +166,10 @@ class EventFlight {
   void predict_all(double now, double end);
   // particle i's earliest event among the walls and its anchor's sphere, if before `best`
   void predict_boundaries(int i, const Vec3 &xi, const Vec3 &vi, double now, double &best, int &partner) const;
+  // particle i's event at `time` with `partner`, stamped with both collision counts
+  Event event_of(int i, double time, int partner) const {
+    return {time, i, partner, count_[i], partner >= 0 ? count_[partner] : 0};
+  }
   void push_event(int i, double time, int partner);
   // The message of a flow step that ran out of collisions, with its likely cause and fix
   std::string collapse(int n, double dt, double when, double last_half) const;
