@@ -50,6 +50,7 @@ sys.path.insert(0, os.path.join(HERE, "..", "..", "python"))
 from tfdem.case import Case, dict_entry  # noqa: E402
 from tfdem.errors import Reported  # noqa: E402
 from tfdem.outputs import OutputError, field, joined_series, pressure_series, probes, times  # noqa: E402
+from tfdem.physics import wen_yu_minimum_fluidization  # noqa: E402
 
 TEMPLATE = os.path.join(HERE, "tfm_bubbling_bed")
 JET_TEMPLATE = os.path.join(HERE, "tfm_jet_bed")
@@ -77,27 +78,28 @@ def restitution(e, template_e="0.97"):
     return (KINETIC, rf"(\n\s*e\s+){re.escape(template_e)};", rf"\g<1>{e};")
 
 
-def minimum_fluidization(rho_g, mu, d=0.0025, rho_s=2526.0, g=9.81):
-    """U_mf (m/s) of Wen & Yu (1966, Chem. Eng. Prog. Symp. Ser. 62): Re_mf = sqrt(33.7^2 +
-    0.0408 Ar) - 33.7, Ar = rho_g (rho_s - rho_g) g d^3 / mu^2; for Geldart B and D spheres."""
-    archimedes = rho_g * (rho_s - rho_g) * g * d ** 3 / mu ** 2
-    return (math.sqrt(33.7 ** 2 + 0.0408 * archimedes) - 33.7) * mu / (rho_g * d)
-
-
 # OpenFOAM's fluidisedBed gas: air as a perfect gas at 600 K and 1e5 Pa (molar mass 28.9 g/mol)
 HOT_AIR_DENSITY = 1e5 * 0.0289 / (8.314 * 600)  # kg/m3, 0.579
 HOT_AIR_VISCOSITY = 1.84e-5  # Pa s
 U_SEED000 = 1.92  # m/s, Table 1: 1.5 U_mf
 # The inflow that puts seed 000's air at the tutorial's hot air's U/U_mf (1.92 m/s over its U_mf)
-U_AT_HOT_AIR_RATIO = U_SEED000 / minimum_fluidization(HOT_AIR_DENSITY, HOT_AIR_VISCOSITY, rho_s=2500) \
-    * minimum_fluidization(1.2, 1.8e-5)
-HOT_AIR = [("constant/thermophysicalProperties.air", r"\n(\s*)rho\s+1\.2;", rf"\n\g<1>rho         {HOT_AIR_DENSITY:.4f};"),
-           ("constant/thermophysicalProperties.air", r"mu\s+1\.8e-05;", f"mu          {HOT_AIR_VISCOSITY:g};")]
+U_AT_HOT_AIR_RATIO = U_SEED000 / wen_yu_minimum_fluidization(0.0025, 2500, HOT_AIR_DENSITY, HOT_AIR_VISCOSITY, 9.81) \
+    * wen_yu_minimum_fluidization(0.0025, 2526, 1.2, 1.8e-5, 9.81)
+AIR = "constant/thermophysicalProperties.air"
+HOT_AIR_VISCOSITY_EDIT = (AIR, r"mu\s+1\.8e-05;", f"mu          {HOT_AIR_VISCOSITY:g};")
+HOT_AIR = [(AIR, r"\n(\s*)rho\s+1\.2;", rf"\n\g<1>rho         {HOT_AIR_DENSITY:.4f};"), HOT_AIR_VISCOSITY_EDIT]
+PERFECT_GAS = (AIR, r"equationOfState rhoConst;", "equationOfState perfectGas;")
+
+
+def constant_density(rho):
+    """The edits that make the tutorial's perfect gas one of constant density rho (kg/m3)."""
+    return [(AIR, r"equationOfState perfectGas;", "equationOfState rhoConst;"),
+            (AIR, r"(\n\s*thermodynamics\s*\{)", rf"\n    equationOfState\n    {{\n        rho         {rho};\n    }}\g<1>")]
 
 
 def inflow(u):
-    """The edits that set the template's inflow (superficial, m/s) from 1.92."""
-    return [("0.orig/U.air", r"uniform \(0 1\.92 0\)", f"uniform (0 {u:.4f} 0)", 2)]
+    """The edits that set the template's inflow (superficial, m/s) from U_SEED000."""
+    return [("0.orig/U.air", rf"uniform \(0 {re.escape(str(U_SEED000))} 0\)", f"uniform (0 {u:.4f} 0)", 2)]
 
 
 PERTURBATION = 0.02  # relative, uniform per cell, of the packed bed's alpha_s
@@ -180,17 +182,12 @@ SEED000_VARIANTS = {
                                  HOT_AIR + [restitution("0.8")]),
     "air_compressible": ("the air a perfect gas (1.17 kg/m3 at 300 K and 1 atm), as the fluidisedBed tutorial's gas, "
                          "not of constant density",
-                         [("constant/thermophysicalProperties.air", r"equationOfState rhoConst;",
-                           "equationOfState perfectGas;")]),
+                         [PERFECT_GAS]),
     "air_compressible_restitution_0.8": ("the air a perfect gas (as air_compressible) at e = 0.8",
-                                         [("constant/thermophysicalProperties.air", r"equationOfState rhoConst;",
-                                           "equationOfState perfectGas;"), restitution("0.8")]),
+                                         [PERFECT_GAS, restitution("0.8")]),
     "air_600K_compressible_restitution_0.8": ("the fluidisedBed tutorial's gas as it is there: a perfect gas at 600 K "
                                               "(0.58 kg/m3), 1.84e-5 Pa s, both phases at 600 K, at e = 0.8",
-                                              [("constant/thermophysicalProperties.air", r"equationOfState rhoConst;",
-                                                "equationOfState perfectGas;"),
-                                               ("constant/thermophysicalProperties.air", r"mu\s+1\.8e-05;",
-                                                f"mu          {HOT_AIR_VISCOSITY:g};"),
+                                              [PERFECT_GAS, HOT_AIR_VISCOSITY_EDIT,
                                                ("0.orig/T.air", r"uniform 300;", "uniform 600;", 4),
                                                ("0.orig/T.particles", r"uniform 300;", "uniform 600;", 4),
                                                restitution("0.8")]),
@@ -231,18 +228,10 @@ TOWARDS_SEED000 = {
                                         f"{SEED000_INVENTORY_HEIGHT * 100:.1f} cm deep at alpha_s 0.55, not 50 cm", []),
     "fluidised_bed_2.5mm_shallow_air_seed000": ("the shallow 2.5 mm tutorial with seed 000's air: 1.2 kg/m3 and "
                                                 "1.8e-5 Pa s, not a perfect gas at 600 K and 1 bar (0.58 kg/m3, 1.84e-5 Pa s)",
-                                                [("constant/thermophysicalProperties.air", r"equationOfState perfectGas;",
-                                                  "equationOfState rhoConst;"),
-                                                 ("constant/thermophysicalProperties.air", r"(\n\s*thermodynamics\s*\{)",
-                                                  r"\n    equationOfState\n    {\n        rho         1.2;\n    }\g<1>"),
-                                                 ("constant/thermophysicalProperties.air", r"mu\s+1\.84e-05;",
-                                                  "mu          1.8e-05;")]),
+                                                constant_density(1.2) + [(AIR, r"mu\s+1\.84e-05;", "mu          1.8e-05;")]),
     "fluidised_bed_2.5mm_shallow_air_incompressible": ("the shallow 2.5 mm tutorial with its hot air of constant density "
                                                        "(0.579 kg/m3, rhoConst), not a perfect gas",
-                                                       [("constant/thermophysicalProperties.air", r"equationOfState perfectGas;",
-                                                         "equationOfState rhoConst;"),
-                                                        ("constant/thermophysicalProperties.air", r"(\n\s*thermodynamics\s*\{)",
-                                                         rf"\n    equationOfState\n    {{\n        rho         {HOT_AIR_DENSITY:.4f};\n    }}\g<1>")]),
+                                                       constant_density(f"{HOT_AIR_DENSITY:.4f}")),
     "fluidised_bed_2.5mm_shallow_laminar_gas": ("the shallow 2.5 mm tutorial with the gas laminar, not k-epsilon "
                                                 "(seed 000's template's)",
                                                 [("constant/turbulenceProperties.air", r"simulationType\s+RAS;",
@@ -589,13 +578,18 @@ def write_snapshots(name, count=6):
     """alpha_s of `count` writes evenly spread over the run's second half, one line per row of
     cells (bottom first): results/tfm_mechanism/snapshots/<variant>.csv, the figure's input."""
     case = os.path.join(RUNS, name)
+    if not os.path.isdir(case):
+        raise MechanismError(f"{case}: no run of {name} here: `tfm_mechanism.py run --variants {name}` first")
     nx, ny = grid(case)
     written = [t for t in times(case) if float(t) > 0]
+    if len(written) < count:
+        raise MechanismError(f"{case}: {len(written)} writes, fewer than the {count} snapshots: an unfinished run")
     late = [t for t in written if float(t) >= float(written[-1]) / 2 - 1e-9]
     chosen = [late[round(k * (len(late) - 1) / (count - 1))] for k in range(count)]
     lo, hi = Case(case).mesh_bounds()
     os.makedirs(SNAPSHOTS, exist_ok=True)
-    with open(os.path.join(SNAPSHOTS, name + ".csv"), "w", newline="") as f:
+    path = os.path.join(SNAPSHOTS, name + ".csv")
+    with open(path + ".tmp", "w", newline="") as f:
         out = csv.writer(f)
         out.writerow(["t (s)", "row", f"alpha_s of the row's {nx} cells, left to right; cells "
                       f"{(hi[0] - lo[0]) / nx * 100:g} x {(hi[1] - lo[1]) / ny * 100:g} cm"])
@@ -604,6 +598,7 @@ def write_snapshots(name, count=6):
             alpha = rows_of(field(case, t, "alpha.particles"), order)
             for j in range(ny):
                 out.writerow([t, j] + [f"{a:.4g}" for a in alpha[j * nx:(j + 1) * nx]])
+    os.replace(path + ".tmp", path)
 
 
 def read_snapshots(name):
@@ -659,8 +654,12 @@ def main(argv=None):
     sub.add_parser("measure", help="read the measures again from the runs in runs/tfm_mechanism/")
     args = parser.parse_args(argv)
     if args.command == "snapshots":
-        for name in args.variants:
-            write_snapshots(name)
+        try:
+            for name in args.variants:
+                write_snapshots(name)
+        except (MechanismError, OutputError) as error:
+            print(f"tfm_mechanism.py: {error}", file=sys.stderr)
+            return 1
         return 0
     if args.command == "figure":
         missing = [n for n in args.variants if not os.path.exists(os.path.join(SNAPSHOTS, n + ".csv"))]
@@ -668,7 +667,12 @@ def main(argv=None):
             print(f"tfm_mechanism.py: no snapshots of {' '.join(missing)}: run `tfm_mechanism.py snapshots` "
                   "on a finished run first", file=sys.stderr)
             return 1
-        draw_snapshots(args.variants, args.out)
+        try:
+            draw_snapshots(args.variants, args.out)
+        except OSError as error:
+            print(f"tfm_mechanism.py: --out {args.out}: cannot write it ({error.strerror}). Fix: a PNG path in a "
+                  "writable folder", file=sys.stderr)
+            return 1
         return 0
     if args.command == "measure":
         for name in VARIANTS:
