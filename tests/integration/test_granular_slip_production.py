@@ -1,0 +1,131 @@
+"""granularSlipProduction (tfm_models/) replaces v1912's production of Theta by gas-particle
+slip: the first step of a uniformly fluidized column, Theta against its value by hand.
+
+The TFM peer's template (studies/seed000/tfm_bubbling_bed) made a column one cell wide and 20
+tall, alpha_s = 0.4 everywhere, solids at rest, the gas at the inflow's interstitial velocity
+(1.92 / 0.6 m/s), Theta uniform at THETA_0 with zero-gradient walls and inlet, a gas 55 times as
+viscous as air (so Koch & Sangani's term, which scales with mu_g^2, is visible in one step), run
+for one step of 1e-4 s by Debian's twoPhaseEulerFoam three times: with OpenFOAM's slip production,
+with ours set to `none`, and to `KochSangani`. In the middle cell every gradient is zero, so the
+granular energy equation of kineticTheoryModel::correct is, per unit volume (Gidaspow 1994 eq.
+9.86-9.88 as v1912 writes it),
+    1.5 alpha rho_s (Theta_1 - Theta_0) / dt
+        = -(gamma + J1) Theta_1 + J2 Theta_1 / (Theta_0 + 1e-6) + S,
+    gamma = 12 (1 - e^2) alpha^2 rho_s g0 sqrt(Theta_0) / (d sqrt(pi))   (Lun et al. 1984)
+    J1 = 3 beta,  J2 = beta^2 d |du|^2 / (4 alpha rho_s sqrt(pi) (sqrt(Theta_0) + 1e-3))
+    S = 81 alpha mu_g^2 |du|^2 / (g0 d^3 rho_s sqrt(pi) (sqrt(Theta_0) + 1e-3))  (Koch & Sangani 1999)
+with J2 only in the stock run, S only with KochSangani; beta = 150 alpha^2 mu_g / ((1 - alpha)
+d^2) + 1.75 alpha rho_g |du| / d (Ergun, below gas fraction 0.8), g0 = (1 - alpha/2) / (1 -
+alpha)^3 (Carnahan & Starling), du the slip the step ends with (read from the written fields).
+"""
+import math
+import os
+import re
+
+from tfdem import BUILD_DIR, STUDIES
+from tfdem.case import Case
+from tfdem.outputs import field
+from tfdem_testlib import Checks, fail, run, scratch
+
+TEMPLATE = os.path.join(STUDIES, "seed000", "tfm_bubbling_bed")
+LIBRARY = os.path.join(BUILD_DIR, "tfm_models", "libtfdemKineticTheory.so")
+ALPHA_S = 0.4
+THETA_0 = 2e-3  # m^2/s^2
+GAS_VISCOSITY = 1e-3  # Pa s
+STEP = 1e-4  # s
+CELLS = 20
+U_INFLOW = 1.92  # m/s, the template's superficial inflow
+
+
+def edit(path, pattern, replacement):
+    with open(path) as f:
+        text = f.read()
+    new, count = re.subn(pattern, replacement, text)
+    if count != 1:
+        fail(f"{path}: {pattern!r} matched {count} times")
+    with open(path, "w") as f:
+        f.write(new)
+
+
+def number(path, key):
+    with open(path) as f:
+        text = re.sub(r"//.*", "", f.read())
+    return float(re.search(rf"\n\s*{key}\s+([-+0-9.eE]+)\s*;", text).group(1))
+
+
+def fv_options(production):
+    return ("FoamFile\n{\n    version     2.0;\n    format      ascii;\n    class       dictionary;\n"
+            "    object      fvOptions;\n}\nslipProduction\n{\n    type            granularSlipProduction;\n"
+            f"    phase           particles;\n    production      {production};\n}}\n")
+
+
+def column(name, production):
+    """The column case under build/test-runs/name, run one step (production None: v1912's own)."""
+    path = Case(TEMPLATE).copy_to(scratch(name), extra=("Allprepare", "0.orig")).path
+    edit(os.path.join(path, "system/blockMeshDict"), r"\nnx\s+15;", "\nnx      1;")
+    edit(os.path.join(path, "system/blockMeshDict"), r"\nny\s+45;", f"\nny      {CELLS};")
+    control = os.path.join(path, "system/controlDict")
+    edit(control, r"\ndeltaT\s[^;]*;", f"\ndeltaT          {STEP:g};")
+    edit(control, r"\nendTime\s[^;]*;", f"\nendTime {STEP:g};")
+    edit(control, r"\nwriteInterval\s[^;]*;", f"\nwriteInterval {STEP:g};")
+    edit(control, r"\nwritePrecision\s[^;]*;", "\nwritePrecision  15;")
+    edit(control, r"\nadjustTimeStep\s[^;]*;", "\nadjustTimeStep  no;")
+    edit(os.path.join(path, "constant/thermophysicalProperties.air"), r"\n(\s*)mu\s+[^;]*;", f"\n\\g<1>mu {GAS_VISCOSITY:g};")
+    edit(os.path.join(path, "system/fvSolution"), r"(\"Theta\.\*\"\s*\{[^}]*tolerance\s+)[^;]*;", r"\g<1>1e-14;")
+    if production:
+        edit(control, r"\napplication\s", f'\nlibs            ("{LIBRARY}");\napplication ')
+        with open(os.path.join(path, "constant/fvOptions"), "w") as f:
+            f.write(fv_options(production))
+    theta = os.path.join(path, "0.orig/Theta.particles")
+    edit(theta, r"\nreferenceLevel\s[^;]*;", "\n")
+    edit(theta, r"inlet\s*\{[^}]*\}", "inlet\n    {\n        type            zeroGradient;\n    }")
+    run(["./Allprepare"], path, "log.Allprepare")
+    edit(os.path.join(path, "0/alpha.particles"), r"internalField\s+[^;]*;", f"internalField   uniform {ALPHA_S};")
+    edit(os.path.join(path, "0/Theta.particles"), r"internalField\s+[^;]*;", f"internalField   uniform {THETA_0:g};")
+    edit(os.path.join(path, "0/U.air"), r"internalField\s+[^;]*;",
+         f"internalField   uniform (0 {U_INFLOW / (1 - ALPHA_S):.12g} 0);")
+    run(["twoPhaseEulerFoam"], path, "log.twoPhaseEulerFoam")
+    return path
+
+
+def main():
+    checks = Checks()
+    if not os.path.isfile(LIBRARY):
+        fail(f"{LIBRARY} not built (scripts/setup.sh builds tfm_models/)")
+    props = os.path.join(TEMPLATE, "constant")
+    rho_s = number(os.path.join(props, "thermophysicalProperties.particles"), "rho")
+    rho_g = number(os.path.join(props, "thermophysicalProperties.air"), "rho")
+    e = number(os.path.join(props, "turbulenceProperties.particles"), "e")
+    d = number(os.path.join(props, "phaseProperties"), "d")
+    middle, written = CELLS // 2, f"{STEP:g}"
+    theta_1 = {}
+    for production in (None, "none", "KochSangani"):
+        path = column(f"granular_slip_production_{production or 'stock'}", production)
+        alpha = field(path, written, "alpha.particles")[middle]
+        slip = math.dist(field(path, written, "U.particles")[middle], field(path, written, "U.air")[middle])
+        g0 = (1 - alpha / 2) / (1 - alpha) ** 3
+        beta = 150 * alpha ** 2 * GAS_VISCOSITY / ((1 - alpha) * d ** 2) + 1.75 * alpha * rho_g * slip / d
+        root = math.sqrt(math.pi) * (math.sqrt(THETA_0) + 1e-3)
+        gamma = 12 * (1 - e ** 2) * alpha ** 2 * rho_s * g0 * math.sqrt(THETA_0) / (d * math.sqrt(math.pi))
+        j2 = beta ** 2 * d * slip ** 2 / (4 * alpha * rho_s * root) if production is None else 0.0
+        s = 81 * alpha * GAS_VISCOSITY ** 2 * slip ** 2 / (g0 * d ** 3 * rho_s * root) if production == "KochSangani" else 0.0
+        inertia = 1.5 * alpha * rho_s / STEP
+        expected = (inertia * THETA_0 + s) / (inertia + gamma + 3 * beta - j2 / (THETA_0 + 1e-6))
+        theta_1[production] = field(path, written, "Theta.particles")[middle]
+        checks.close(f"Theta after one step, slip production {production or 'of v1912'} (m2/s2)", theta_1[production],
+                     expected, 1e-6)
+        if production == "KochSangani":
+            increment = s / (inertia + gamma + 3 * beta)
+            checks.close("Koch & Sangani's increment of Theta (m2/s2)", theta_1[production] - theta_1["none"],
+                         increment, 1e-3)
+            checks.true("the increment is not lost in round-off", increment > 1e-4 * THETA_0, f"{increment:.3g}")
+            print(f"slip {slip:.4f} m/s, beta {beta:.1f} kg/m3/s, S {s:.3g} W/m3")
+        if production is None:
+            print(f"v1912's J2 {j2:.4g} W/m3 at Theta_0")
+    checks.true("v1912's production is taken away", theta_1[None] - theta_1["none"] > 0.1 * THETA_0,
+                f"{theta_1[None]:.6g} against {theta_1['none']:.6g}")
+    checks.finish()
+
+
+if __name__ == "__main__":
+    main()
