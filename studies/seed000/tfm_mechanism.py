@@ -70,9 +70,23 @@ E_EFFECTIVE_JET = 0.86 - 1.5 * 0.2 * math.exp(-3 * 0.2)
 # The conservative granular pressure force, -grad P_s (tfm_models/kineticTheoryConservative.H)
 KINETIC_THEORY_LIBRARY = os.path.join(os.environ.get("TFDEM_BUILD", os.path.join(HERE, "..", "..", "build")),
                                       "tfm_models", "libtfdemKineticTheory.so")
+LOAD_LIBRARY = ("system/controlDict", r"\napplication\s",
+                f'\nlibs            ("{os.path.abspath(KINETIC_THEORY_LIBRARY)}");\napplication ')
 CONSERVATIVE = [(KINETIC, r"RASModel\s+kineticTheory;", "RASModel        kineticTheoryConservative;"),
                 (KINETIC, r"kineticTheoryCoeffs", "kineticTheoryConservativeCoeffs"),
-                ("system/controlDict", r"\napplication\s", f'\nlibs            ("{os.path.abspath(KINETIC_THEORY_LIBRARY)}");\napplication ')]
+                LOAD_LIBRARY]
+
+
+def slip_production(production):
+    """The edits that replace v1912's production of Theta by gas-particle slip (Gidaspow's, with
+    beta^2) by `production`, KochSangani (MFIX's) or none (tfm_models/granularSlipProduction.H):
+    a new constant/fvOptions (an edit whose pattern is None writes the file)."""
+    options = ("FoamFile\n{\n    version     2.0;\n    format      ascii;\n    class       dictionary;\n"
+               "    object      fvOptions;\n}\n\nslipProduction\n{\n    type            granularSlipProduction;\n"
+               f"    phase           particles;\n    production      {production};\n}}\n")
+    return [LOAD_LIBRARY, ("constant/fvOptions", None, options)]
+
+
 def restitution(e, template_e="0.97"):
     """The edit that sets the particle-particle restitution, from the template's value."""
     return (KINETIC, rf"(\n\s*e\s+){re.escape(template_e)};", rf"\g<1>{e};")
@@ -84,6 +98,12 @@ HOT_AIR_VISCOSITY = 1.84e-5  # Pa s
 U_SEED000 = 1.92  # m/s, Table 1: 1.5 U_mf
 # The inflow that puts seed 000's air at the tutorial's hot air's U/U_mf (1.92 m/s over its U_mf)
 U_AT_HOT_AIR_RATIO = U_SEED000 / wen_yu_minimum_fluidization(0.0025, 2500, HOT_AIR_DENSITY, HOT_AIR_VISCOSITY, 9.81) \
+    * wen_yu_minimum_fluidization(0.0025, 2526, 1.2, 1.8e-5, 9.81)
+# The tutorial's bed is at 600 K but its inflow at 300 K: heated in the bed, the gas doubles its
+# volume, so its superficial velocity in the bed is 1.92 m/s times the densities' ratio
+COLD_AIR_DENSITY = 1e5 * 0.0289 / (8.314 * 300)  # kg/m3, 1.159
+U_HEATED = U_SEED000 * COLD_AIR_DENSITY / HOT_AIR_DENSITY
+U_AT_HEATED_RATIO = U_HEATED / wen_yu_minimum_fluidization(0.0025, 2500, HOT_AIR_DENSITY, HOT_AIR_VISCOSITY, 9.81) \
     * wen_yu_minimum_fluidization(0.0025, 2526, 1.2, 1.8e-5, 9.81)
 AIR = "constant/thermophysicalProperties.air"
 HOT_AIR_VISCOSITY_EDIT = (AIR, r"mu\s+1\.8e-05;", f"mu          {HOT_AIR_VISCOSITY:g};")
@@ -107,6 +127,37 @@ INLET_PERTURBATION = 0.1  # relative, uniform per inlet face, of the inflow velo
 # A bed of bubbles: the rows' lateral std of alpha_s's departure from its cell's time mean
 # above this (1-D waves and slugs, and a steady lateral profile, give 0)
 BUBBLING = 0.02
+
+# The shallow 2.5 mm tutorial with all of the template's settings (chain_8 below) still forms
+# slugs; what else differs from the template at the tutorial's gas is added to that template
+TUTORIAL_GAS = [PERFECT_GAS, HOT_AIR_VISCOSITY_EDIT, ("0.orig/T.air", r"uniform 300;", "uniform 600;", 4),
+                ("0.orig/T.particles", r"uniform 300;", "uniform 600;", 4), restitution("0.8")]
+TUTORIAL_START = [("0.orig/U.air", r"internalField\s+uniform \(0 1\.28 0\);", "internalField   uniform (0 1.92 0);"),
+                  ("0.orig/Theta.particles", r"internalField\s+uniform 1e-4;", "internalField   uniform 0;")]
+PARTICLE_DENSITY_2500 = [("constant/thermophysicalProperties.particles", r"(\n\s*rho\s+)2526;", r"\g<1>2500;")]
+DEPTH_2CM = [("system/blockMeshDict", r"\ndepth\s+0\.0025;", "\ndepth   0.02;")]
+TUTORIAL_REST = {
+    "start": ("the tutorial's start: the gas at 1.92 m/s in every cell (not 1.28) and Theta 0 inside (plus the "
+              "1e-4 reference level both add)", TUTORIAL_START),
+    "particle_density_2500": ("the tutorial's particle density, 2500 kg/m3 (not 2526)", PARTICLE_DENSITY_2500),
+    "depth_2cm": ("the tutorial's slab depth, 2 cm (not 2.5 mm; one cell deep, front and back empty)", DEPTH_2CM),
+    "start_density_depth": ("all three: the tutorial's start, particle density and slab depth",
+                            TUTORIAL_START + PARTICLE_DENSITY_2500 + DEPTH_2CM),
+}
+
+# Seed 000's solids stresses as it prints them (eqs. 7-11; MFIX's, Syamlal, Rogers & O'Brien
+# 1993): P = K1 alpha_s^2 Theta with no kinetic alpha_s rho_s Theta term, lambda and mu of
+# K2 and K3, and above alpha_s* = 0.58 the plastic regime of Schaeffer (1987), whose pressure
+# 1e24 (alpha_s - 0.58)^10 Pa is MFIX's
+# 1e24 (alpha_s - 0.58)^10 Pa is MFIX's: 1e7 Pa at the template's packing 0.6, so that bed is
+# laid down at 0.58
+SEED000_VISCOUS_CLOSURES = [(KINETIC, r"granularPressureModel\s+Lun;", "granularPressureModel   SyamlalRogersOBrien;"),
+                            (KINETIC, r"viscosityModel\s+Gidaspow;", "viscosityModel          Syamlal;"),
+                            (KINETIC, r"conductivityModel\s+Gidaspow;", "conductivityModel       Syamlal;")]
+SEED000_CLOSURES = SEED000_VISCOUS_CLOSURES + [
+    (KINETIC, r"frictionalStressModel\s+JohnsonJacksonSchaeffer;", "frictionalStressModel   Schaeffer;"),
+    (KINETIC, r"JohnsonJacksonSchaefferCoeffs", "SchaefferCoeffs"),
+    ("Allprepare", r"\nalpha_s0=0\.6 ", "\nalpha_s0=0.58 ")]
 
 # name: (what changes, [(file, pattern, replacement[, matches])]); patterns are regular
 # expressions that must match exactly once in the template (or `matches` times)
@@ -191,6 +242,39 @@ SEED000_VARIANTS = {
                                                ("0.orig/T.air", r"uniform 300;", "uniform 600;", 4),
                                                ("0.orig/T.particles", r"uniform 300;", "uniform 600;", 4),
                                                restitution("0.8")]),
+    "tutorial_gas_cold_inflow": ("the fluidisedBed tutorial's gas at e 0.8 (as air_600K_compressible_restitution_0.8) "
+                                 "fed at 300 K as the tutorial's is (the bed at 600 K): the gas heats and expands "
+                                 f"in the bed to {U_HEATED:.2f} m/s",
+                                 [PERFECT_GAS, HOT_AIR_VISCOSITY_EDIT, restitution("0.8")]
+                                 + [(f"0.orig/T.{phase}", r"internalField\s+uniform 300;", "internalField   uniform 600;")
+                                    for phase in ("air", "particles")]),
+    "inflow_heated_tutorial_umf": (f"the inflow at {U_AT_HEATED_RATIO:.2f} m/s: the U/U_mf of the tutorial's heated gas "
+                                   f"({U_HEATED:.2f} m/s at 600 K), not 1.5", inflow(U_AT_HEATED_RATIO)),
+    "inflow_heated_tutorial_umf_restitution_0.8": (f"the inflow at {U_AT_HEATED_RATIO:.2f} m/s (as "
+                                                   "inflow_heated_tutorial_umf) at e = 0.8",
+                                                   inflow(U_AT_HEATED_RATIO) + [restitution("0.8")]),
+    **{f"tutorial_gas_{name}": (f"the fluidisedBed tutorial's gas at e 0.8 (as air_600K_compressible_restitution_0.8) "
+                                f"with {what}", TUTORIAL_GAS + changes)
+       for name, (what, changes) in TUTORIAL_REST.items()},
+    "slip_production_koch_sangani": ("Theta's production by gas-particle slip as MFIX's (Koch & Sangani 1999, "
+                                     "81 alpha mu^2 |du|^2 / (g0 d^3 rho_s sqrt(pi Theta))), not v1912's Gidaspow form "
+                                     "(beta^2 d |du|^2 / (4 alpha rho_s sqrt(pi Theta)))",
+                                     slip_production("KochSangani")),
+    "slip_production_koch_sangani_restitution_0.859": (f"MFIX's slip production (as slip_production_koch_sangani) at "
+                                                       f"e = {E_EFFECTIVE:.3f}, Jenkins & Zhang's effective e of Table 1's "
+                                                       "e and mu", slip_production("KochSangani")
+                                                       + [restitution(f"{E_EFFECTIVE:.4f}")]),
+    "slip_production_koch_sangani_perturbed": (f"MFIX's slip production (as slip_production_koch_sangani), the start "
+                                               f"perturbed by +-{PERTURBATION:.0%} per cell (as perturbed)",
+                                               slip_production("KochSangani")),
+    "slip_production_none": ("no production of Theta by gas-particle slip (v1912's Gidaspow form taken away)",
+                             slip_production("none")),
+    "seed000_viscous_closures": ("seed 000's viscous-regime stresses as printed (eqs. 8-11, MFIX's): Syamlal-Rogers-O'Brien "
+                                 "pressure K1 alpha^2 Theta, Syamlal viscosity and conductivity (friction the template's)",
+                                 SEED000_VISCOUS_CLOSURES),
+    "seed000_closures": ("seed 000's solids stresses as printed (eqs. 7-11): as seed000_viscous_closures with "
+                         "Schaeffer's plastic regime above 0.58 (MFIX's), the bed laid down at 0.58",
+                         SEED000_CLOSURES),
     "inflow_1.13_umf": (f"the inflow at {U_AT_HOT_AIR_RATIO:.2f} m/s, the hot-air tutorial's U/U_mf, not 1.5 U_mf",
                         inflow(U_AT_HOT_AIR_RATIO)),
     "fine_grid": ("cells of 0.5 cm (30 x 90)",
@@ -211,6 +295,9 @@ FLUIDISED_BED_VARIANTS = {
                       "friction from 0.5, 5 mm cells", []),
     "fluidised_bed_restitution_0.97": ("the same with e = 0.97, seed 000's",
                                        [restitution("0.97", "0.8")]),
+    "fluidised_bed_slip_production_koch_sangani": ("the same with MFIX's production of Theta by slip (Koch & Sangani "
+                                                   "1999), not v1912's Gidaspow form: does the tutorial still bubble?",
+                                                   slip_production("KochSangani")),
     "fluidised_bed_particles_2.5mm": ("the same with seed 000's particles and inflow: d 2.5 mm, U 1.92 m/s",
                                       PARTICLES_2_5_MM),
     "fluidised_bed_particles_2.5mm_restitution_0.97": ("the same with d 2.5 mm, U 1.92 m/s and e = 0.97",
@@ -283,14 +370,18 @@ for last in range(3, len(CHAIN) + 1):
     TOWARDS_SEED000[f"fluidised_bed_2.5mm_shallow_chain_{last}"] = (
         f"the shallow 2.5 mm tutorial with the template's first {last} settings: {', '.join(CHAIN[:last])}",
         [change for name in CHAIN[:last] for change in CHAIN_EDITS[name]])
+LONG_CHAIN = f"fluidised_bed_2.5mm_shallow_chain_{len(CHAIN)}_to_6s"
+TOWARDS_SEED000[LONG_CHAIN] = (f"the shallow 2.5 mm tutorial with all {len(CHAIN)} of the template's settings (as "
+                               f"chain_{len(CHAIN)}) run to 6 s as the template's runs (measured over 3-6 s, not 1-2 s)",
+                               TOWARDS_SEED000[f"fluidised_bed_2.5mm_shallow_chain_{len(CHAIN)}"][1])
 FLUIDISED_BED_VARIANTS.update({name: (what, PARTICLES_2_5_MM + SHALLOW + changes) for name, (what, changes) in TOWARDS_SEED000.items()})
 VARIANTS = {**{name: ("seed000",) + v for name, v in SEED000_VARIANTS.items()},
             **{name: ("seed000_jet",) + v for name, v in SEED000_JET_VARIANTS.items()},
             **{name: ("fluidised_bed",) + v for name, v in FLUIDISED_BED_VARIANTS.items()}}
 DEFAULT_END_TIME = {"seed000": 6.0, "seed000_jet": 6.0, "fluidised_bed": 0.6}  # s, unless a variant's own below
 END_TIME = {"fluidised_bed_particles_2.5mm": 2.0, "fluidised_bed_particles_2.5mm_restitution_0.97": 2.0,
-            **{name: 2.0 for name in TOWARDS_SEED000}}
-CHANGES_AFTER_PREPARE = {"perturbed"}
+            **{name: 2.0 for name in TOWARDS_SEED000}, LONG_CHAIN: 6.0}
+CHANGES_AFTER_PREPARE = {"perturbed", "slip_production_koch_sangani_perturbed"}
 CHANGES_BEFORE_PREPARE = {"inlet_perturbed"}
 
 
@@ -406,7 +497,11 @@ def run_variant(name, end_time):
     source = {"seed000": TEMPLATE, "seed000_jet": JET_TEMPLATE}.get(template) or fluidised_bed_template()
     shutil.copytree(source, case, ignore=lambda folder, names: [n for n in names if is_output(n) and n != "0"])
     for path, pattern, replacement, *expected in edits:
-        edit(os.path.join(case, path), pattern, replacement, *expected)
+        if pattern is None:
+            with open(os.path.join(case, path), "w") as f:
+                f.write(replacement)
+        else:
+            edit(os.path.join(case, path), pattern, replacement, *expected)
     set_control(case, end_time or END_TIME.get(name, DEFAULT_END_TIME[template]), WRITE_INTERVAL[template])
     if name in CHANGES_BEFORE_PREPARE:
         perturb_inlet(case)
