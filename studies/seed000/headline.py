@@ -91,6 +91,31 @@ class Headline:
         return (f"{pm(s['mean'], s['error'])} Pa, std {s['std']:.3g} Pa, "
                 f"{self.runs[run][self.w]['dp20_frequency']:.2g} Hz (`{run}`, one run)")
 
+    def peer(self, bed, key, part="mean"):
+        """The kinetic-theory TFM peer's ensemble against TF-DEM's (replicates' "tfm"): {tfm,
+        tfdem, difference}, or None before its realizations are run."""
+        return ((self.r.get("tfm") or {}).get(f"{bed}_tfm_peer - {bed}_m1", {}).get(self.w, {}).get(f"{key} {part}"))
+
+    def peer_text(self, bed, key, scale=1.0, unit=""):
+        """The peer's ensemble mean ± error, its TF-DEM difference in the combined error."""
+        v = self.peer(bed, key)
+        if not v:
+            return f"- (`{bed}_tfm_peer` realizations not run)", "-"
+        u = f" {unit}" if unit else ""
+        value = f"{pm(v['tfm']['mean'], v['tfm']['error'], scale)}{u} (`{bed}_tfm_peer`, n = {v['tfm']['n']})"
+        return value, "peer − TF-DEM " + self.signed_diff(v["difference"], scale, unit)
+
+    def peer_dp(self, bed):
+        """(ours, difference) of the peer's Δp at 20 cm: mean and fluctuation std, each against
+        TF-DEM's in the combined error."""
+        mean, std = self.peer(bed, "dp20"), self.peer(bed, "dp20", "std")
+        if not (mean and std):
+            return f"- (`{bed}_tfm_peer` realizations not run)", "-"
+        return (f"{pm(mean['tfm']['mean'], mean['tfm']['error'])} Pa, std {pm(std['tfm']['mean'], std['tfm']['error'])} Pa "
+                f"(`{bed}_tfm_peer`, n = {mean['tfm']['n']})",
+                f"peer − TF-DEM {self.signed_diff(mean['difference'], unit='Pa')}; std "
+                f"{self.signed_diff(std['difference'], unit='Pa')}")
+
     def signed_diff(self, d, scale=1.0, unit=""):
         if not d:
             return "-"
@@ -133,7 +158,10 @@ class Headline:
         realization's, as mean ± error)."""
         start, end = self.report.windows[0]
         out = {}
-        sources = [("jet_m1", self.groups.get("jet_m1", []))] + [(n, [n]) for n in ("jet_tfm", "jet_tfm_phase_pressure")]
+        seeds = (self.report.study.get("realizations") or {}).get("seeds") or []
+        peer = [f"jet_tfm_peer_r{k}" for k in range(1, len(seeds) + 1)]
+        sources = ([("jet_m1", self.groups.get("jet_m1", []))] + [(n, [n]) for n in ("jet_tfm", "jet_tfm_phase_pressure")]
+                   + [("jet_tfm_peer", peer)])
         for name, members in sources:
             members = [m for m in members if m in self.report.records]
             if not members:
@@ -179,7 +207,9 @@ class Headline:
             ("jet: Δp at 20 cm, method 2", "-", self.dp("jet_m2"),
              "method 2 − method 1: " + self.signed_diff(self.diff("method 2 - method 1", "jet_m2 - jet_m1", "dp20 mean"),
                                                          unit="Pa")),
-            ("jet: Δp at 20 cm, TFM", "similar mean, smaller fluctuating amplitude",
+            ("jet: Δp at 20 cm, TFM peer (kinetic theory, MFIX's slip production, effective e)",
+             "similar mean, smaller fluctuating amplitude", *self.peer_dp("jet")),
+            ("jet: Δp at 20 cm, stock TFMs", "similar mean, smaller fluctuating amplitude",
              f"kinetic theory {self.dp_single('jet_tfm')}; phase pressure {self.dp_single('jet_tfm_phase_pressure')}",
              "; ".join(f"{label} − TF-DEM {self.against(self.single(run, 'dp20'), jet_m1_dp, unit='Pa')}, "
                        f"std {self.single(run, 'dp20')['std'] / jet_std['mean']:.2g}× TF-DEM's"
@@ -217,7 +247,11 @@ class Headline:
                                                          "mean_height mean"), 100, "cm")
              + "; solids-fraction maps " + self.map_comparison("uniform_m1 vs uniform_m2"),
              self.paper_rejection()),
-            ("uniform: mean particle height, TFM", f"{P['mean_height_tfm']} cm",
+            ("uniform: mean particle height, TFM peer (kinetic theory, MFIX's slip production, effective e)",
+             f"{P['mean_height_tfm']} cm (TF-DEM {P['mean_height_m1']} cm: +{P['mean_height_tfm'] - P['mean_height_m1']:.2f})",
+             *self.peer_text("uniform", "mean_height", 100, "cm")),
+            ("uniform: Δp at 20 cm, TFM peer", "-", *self.peer_dp("uniform")),
+            ("uniform: mean particle height, stock TFMs", f"{P['mean_height_tfm']} cm",
              f"kinetic theory {self.one_run('uniform_tfm', 'mean_height', 100, 'cm')}; phase pressure "
              f"{self.one_run('uniform_tfm_phase_pressure', 'mean_height', 100, 'cm')}",
              "; ".join(f"{label} − TF-DEM {self.against(self.single(run, 'mean_height'), self.ens('uniform_m1', 'mean_height'), 100, 'cm')}"

@@ -33,6 +33,11 @@ PLATEAU_FROM = 1.5  # s: the blocking curve's plateau is its mean from this batc
 METHOD_PAIRS = (("jet_m1", "jet_m2"), ("jet_fine_m1", "jet_fine_m2"), ("uniform_m1", "uniform_m2"))
 DIFFERENCE_QUANTITIES = (("dp20", "mean"), ("dp20", "std"), ("mean_height", "mean"), ("bulk_coordination", "mean"),
                          ("multicontact", "mean"))
+# The TFM runs with realizations (perturbed starts) against the TF-DEM's: (TF-DEM, TFM) per bed,
+# the quantities compared, and seed 000's statement on each (TFM - TF-DEM, the paper's numbers
+# where it gives them)
+TFM_PAIRS = (("jet_m1", "jet_tfm_peer"), ("uniform_m1", "uniform_tfm_peer"))
+TFM_QUANTITIES = (("dp20", "mean"), ("dp20", "std"), ("mean_height", "mean"))
 RESOLVED = 2.0  # a difference is resolved when it is at least this many standard errors from zero
 MAP_DEPTH = 0.45  # m: the maps are compared over the cells below this height (the bed)
 REFINEMENTS = ("refine_x", "refine_y")
@@ -193,11 +198,12 @@ class Replicates:
         self.long = report.windows[-1]
         spec = report.study.get("realizations") or {}
         seeds = spec.get("seeds") or []
-        self.groups = {}
+        self.groups, self.tfm_groups = {}, {}
         for config in spec.get("runs") or []:
             names = [f"{config}_r{k}" for k in range(1, len(seeds) + 1) if f"{config}_r{k}" in report.records]
             if len(names) >= 2:
-                self.groups[config] = names
+                tfm = report.study["runs"][config].get("tfm", False)
+                (self.tfm_groups if tfm else self.groups)[config] = names
         self.seeds = seeds
         self.scale = report.end_time / report.study["end_time"]
         self.out = None
@@ -379,6 +385,24 @@ class Replicates:
                 d["paper_in_errors"] = (paper - d["mean"]) / d["error"]
         return out
 
+    def tfm_comparison(self, ensembles):
+        """TFM - TF-DEM of the ensemble means for TFM_PAIRS, each side its realizations' mean and
+        standard error, the difference's error the two added in quadrature (TFM realizations from
+        perturbed starts, TF-DEM's from poured packings)."""
+        out = {}
+        for dem, tfm in TFM_PAIRS:
+            if tfm not in self.tfm_groups or dem not in ensembles:
+                continue
+            for w in self.windows:
+                for key, part in TFM_QUANTITIES:
+                    ours = ensemble([self.run_value(n, w, key)[part] for n in self.tfm_groups[tfm]])
+                    theirs = ensembles[dem][w][key][part]
+                    d = difference(ours, theirs)
+                    d["in_errors"] = d["mean"] / d["error"]
+                    out.setdefault(f"{tfm} - {dem}", {}).setdefault(w, {})[f"{key} {part}"] = {
+                        "tfm": ours, "tfdem": theirs, "difference": d}
+        return out
+
     # Grid convergence --------------------------------------------------------------------------
     def grid_chains(self):
         return {name: [c for c in chain if c in self.groups]
@@ -467,7 +491,8 @@ class Replicates:
             "correlation": {c: self.correlations(c) for c in self.groups},
             "maps": self.map_numbers(), "differences": self.differences(ensembles),
             "grid_study": self.grid_study(ensembles),
-            "packing": self.packing(ensembles)}
+            "packing": self.packing(ensembles),
+            "tfm": self.tfm_comparison(ensembles)}
         self.result["statements"] = self.statements()
         return self.result
 
@@ -492,6 +517,7 @@ class Replicates:
         for pair, values in r["differences"].get("own gas step - template's", {}).items():
             lines.append(self._difference_sentence("own gas step - template's", pair, values, w0, w1))
         lines += self._separation_sentences()
+        lines += self._tfm_sentences()
         for pair, values in r["maps"]["comparisons"].items():
             v = values[w1]
             s = values[w1 + " symmetric"]
@@ -522,6 +548,34 @@ class Replicates:
                          f"{pm(p['share_of_excess_over_paper']['mean'], p['share_of_excess_over_paper']['error'], 100)} % "
                          f"of its excess over the paper's ~{p['paper']:g}; the poured bed stands "
                          f"{p['poured_minus_paper']:+.2f} above the paper's.")
+        return lines
+
+    def _tfm_sentences(self):
+        """Seed 000's TFM statements tested on the peer's realizations, over the paper's window:
+        the uniform bed's mean particle height (the paper's TFM 9.16 against TF-DEM 8.9 cm) and
+        the jet bed's Delta p at 20 cm ("a similar mean pressure, but a smaller fluctuating
+        amplitude", Fig. 3)."""
+        w0, lines = self.windows[0], []
+        uniform = (self.result.get("tfm") or {}).get("uniform_tfm_peer - uniform_m1")
+        if uniform:
+            d = uniform[w0]["mean_height mean"]["difference"]
+            paper = (self.paper["mean_height_tfm"] - self.paper["mean_height_m1"]) / 100.0
+            away = (paper - d["mean"]) / d["error"]
+            lines.append(f"Uniform bed, mean particle height, TFM peer - TF-DEM over {w0} s: "
+                         f"{signed(d['mean'], d['error'], 100)} cm (combined error of both ensembles) against the "
+                         f"paper's {100 * paper:+.2f} cm ({self.paper['mean_height_tfm']} - "
+                         f"{self.paper['mean_height_m1']} cm): {abs(away):.1f} standard errors away, "
+                         f"{'not reproduced' if abs(away) >= RESOLVED else 'reproduced'} at {RESOLVED:g} standard errors.")
+        jet = (self.result.get("tfm") or {}).get("jet_tfm_peer - jet_m1")
+        if jet:
+            mean, std = jet[w0]["dp20 mean"]["difference"], jet[w0]["dp20 std"]["difference"]
+            similar = abs(mean["in_errors"]) < RESOLVED
+            smaller = std["mean"] < 0 and abs(std["in_errors"]) >= RESOLVED
+            lines.append(f"Jet bed, Δp at 20 cm, TFM peer - TF-DEM over {w0} s: mean {signed(mean['mean'], mean['error'])} "
+                         f"Pa ({'similar' if similar else 'a resolved difference'}), fluctuation std "
+                         f"{signed(std['mean'], std['error'])} Pa ({'smaller' if smaller else 'not resolved smaller'}): "
+                         f"the paper's \"similar mean, smaller fluctuation\" "
+                         f"{'reproduced' if similar and smaller else 'not reproduced'}.")
         return lines
 
     def _separation_sentences(self):
@@ -750,12 +804,37 @@ class Replicates:
             for w, v in values.items():
                 lines.append(f"| {pair} | {w} | {v['cross_mean']:.4f} [{v['cross_min']:.4f}-{v['cross_max']:.4f}] | "
                              f"{v['cross_over_within']:.2f} | {v['permutation']['p']:.3f} |")
+        lines += self._tfm_markdown()
         lines += ["", "What the data show (replicates.py's rules: a difference is resolved at "
                       f"{RESOLVED:g} standard errors, about 90 % two-sided with the ~6 degrees of freedom of two "
                       "4-run ensembles; a map difference at p < 0.05):", ""]
         lines += [f"- {s}" for s in r["statements"]]
         return lines
 
+
+    def _tfm_markdown(self):
+        """The TFM peer's realizations against TF-DEM's: a table per window."""
+        comparisons = self.result.get("tfm") or {}
+        if not comparisons:
+            return []
+        n = {c: len(v) for c, v in self.tfm_groups.items()}
+        lines = ["", "The kinetic-theory TFM peer (realizations from the packed bed's α_s perturbed by ±2 % per cell, "
+                     "the same seeds: " + ", ".join(f"{c} × {n[c]}" for c in self.tfm_groups) + ") against TF-DEM "
+                     "(method 1), each an ensemble mean ± its standard error, the difference's error both added in "
+                     "quadrature:", "",
+                 "| quantity | window | TFM | TF-DEM | TFM − TF-DEM | in errors |", "|---|---|---|---|---|---|"]
+        units = {key: (label, unit, scale) for key, label, unit, scale in METRICS}
+        for pair, values in comparisons.items():
+            for w, entry in values.items():
+                for name, v in entry.items():
+                    key, part = name.split()
+                    label, unit, scale = units[key]
+                    text = label + (" std" if part == "std" else "") + f" ({unit}), {pair.split(' - ')[0]}"
+                    d = v["difference"]
+                    lines.append(f"| {text} | {w} s | {pm(v['tfm']['mean'], v['tfm']['error'], scale)} | "
+                                 f"{pm(v['tfdem']['mean'], v['tfdem']['error'], scale)} | "
+                                 f"{signed(d['mean'], d['error'], scale)} | {d['in_errors']:+.1f} |")
+        return lines
 
     def _grid_study_markdown(self, w0, w1):
         study = self.result["grid_study"]

@@ -232,7 +232,7 @@ class Report:
         return [n for n in names if n in self.records]
 
     def fig3(self):
-        names = self.shown("jet_m1", "jet_m2", "jet_tfm", "jet_tfm_phase_pressure")
+        names = self.shown("jet_m1", "jet_m2", "jet_tfm", "jet_tfm_phase_pressure", "jet_tfm_peer")
         if not names:
             return
         start, end = self.windows[0]
@@ -304,7 +304,7 @@ class Report:
         self.save(fig, filename)
 
     def fig8(self):
-        names = [n for n in ("jet_m1", "jet_tfm", "jet_tfm_phase_pressure") if n in self.data]
+        names = [n for n in ("jet_m1", "jet_tfm", "jet_tfm_phase_pressure", "jet_tfm_peer_r1") if n in self.data]
         if "jet_m1" not in names or len(names) < 2:
             return
         start, end = self.windows[0]
@@ -322,7 +322,7 @@ class Report:
 
     def fig9(self):
         names = self.shown("uniform_m1", "uniform_m2", "uniform_m2_interpolated", "uniform_tfm",
-                           "uniform_tfm_phase_pressure")
+                           "uniform_tfm_phase_pressure", "uniform_tfm_peer")
         if not names:
             return
         fig, ax = plt.subplots(figsize=(8, 3.5))
@@ -341,7 +341,7 @@ class Report:
         """The uniform bed's time-averaged solids fraction per configuration: the mean of its
         realizations' maps (or its one run's)."""
         configs = [c for c in ("uniform_m1", "uniform_m2", "uniform_m2_interpolated", "uniform_tfm",
-                               "uniform_tfm_phase_pressure") if self.realizations(c) or c in self.records]
+                               "uniform_tfm_phase_pressure", "uniform_tfm_peer") if self.realizations(c) or c in self.records]
         if len(configs) < 2:
             return
         start, end = self.windows[0]

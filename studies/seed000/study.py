@@ -27,6 +27,8 @@ from tfdem.case import Case, CaseError, set_dict_entries
 from tfdem.packing import pour, set_atom_types
 from tfdem.run import DEFAULT_GAS_LAYOUT, RunError, check_gas_layout, command, environment, prepare_gas, run
 
+import tfm_mechanism  # noqa: E402  (this folder: the TFM peer's changes, the perturbed start)
+
 STUDY_DIR = os.path.dirname(os.path.abspath(__file__))
 
 
@@ -35,8 +37,11 @@ class StudyError(Exception):
 
 
 RUN_KEYS = ("bed", "coupling", "refine_x", "refine_y", "gas_step", "tfm", "tfm_solids", "ranks", "gas")
-# the TFM solids stress: the templates' kinetic theory, or the phase-pressure model (a file here)
-TFM_SOLIDS = {"kinetic_theory": None, "phase_pressure": "tfm_phase_pressure.particles"}
+# the TFM solids stress: the templates' kinetic theory (v1912's), the phase-pressure model (a file
+# here), or the kinetic-theory peer that bubbles (tfm_mechanism.PEER: MFIX's slip production and
+# Jenkins & Zhang's effective restitution; tfm_README.md)
+TFM_SOLIDS = ("kinetic_theory", "phase_pressure", "kinetic_theory_peer")
+PHASE_PRESSURE = "tfm_phase_pressure.particles"
 
 
 def load_study(path=os.path.join(STUDY_DIR, "study.yaml")):
@@ -184,10 +189,15 @@ class Run(CaseRun):
         if refine != 1:
             set_dict_entries(path, ny=int(round(float(re.search(r"(?m)^ny\s+(\d+);", open(path).read()).group(1)) * refine)))
         self._set_initial_gas(case.file("0.orig", "U.air"))
-        solids = TFM_SOLIDS[self.spec.get("tfm_solids", "kinetic_theory")]
-        if solids:
-            shutil.copy(os.path.join(STUDY_DIR, solids), case.file("constant", "turbulenceProperties.particles"))
+        solids = self.spec.get("tfm_solids", "kinetic_theory")
+        if solids == "phase_pressure":
+            shutil.copy(os.path.join(STUDY_DIR, PHASE_PRESSURE), case.file("constant", "turbulenceProperties.particles"))
+        elif solids == "kinetic_theory_peer":
+            tfm_mechanism.apply_edits(case.path, tfm_mechanism.PEER[self.bed])
         run(["./Allprepare"], case.path, "log.Allprepare")
+        if "seed" in self.spec:
+            # a realization of a TFM run: the packed bed's alpha_s perturbed per cell, its seed
+            tfm_mechanism.perturb(case.path, self.spec["seed"])
 
     def _set_initial_gas(self, path):
         """Seed 000 Table 1: the gas starts at v_g = U_mf (upward) in the whole domain."""

@@ -159,6 +159,12 @@ SEED000_CLOSURES = SEED000_VISCOUS_CLOSURES + [
     (KINETIC, r"JohnsonJacksonSchaefferCoeffs", "SchaefferCoeffs"),
     ("Allprepare", r"\nalpha_s0=0\.6 ", "\nalpha_s0=0.58 ")]
 
+# The kinetic-theory peer that bubbles (tfm_README.md, "The gas heats the solids"): MFIX's
+# production of Theta by slip and Jenkins & Zhang's effective restitution of the bed's Table 1
+# e and friction; per study bed (study.py's tfm_solids: kinetic_theory_peer)
+PEER = {"uniform": slip_production("KochSangani") + [restitution(f"{E_EFFECTIVE:.4f}")],
+        "jet": slip_production("KochSangani") + [restitution(f"{E_EFFECTIVE_JET:.4f}", "0.86")]}
+
 # name: (what changes, [(file, pattern, replacement[, matches])]); patterns are regular
 # expressions that must match exactly once in the template (or `matches` times)
 SEED000_VARIANTS = {
@@ -262,8 +268,7 @@ SEED000_VARIANTS = {
                                      slip_production("KochSangani")),
     "slip_production_koch_sangani_restitution_0.859": (f"MFIX's slip production (as slip_production_koch_sangani) at "
                                                        f"e = {E_EFFECTIVE:.3f}, Jenkins & Zhang's effective e of Table 1's "
-                                                       "e and mu", slip_production("KochSangani")
-                                                       + [restitution(f"{E_EFFECTIVE:.4f}")]),
+                                                       "e and mu: the peer", PEER["uniform"]),
     "slip_production_koch_sangani_perturbed": (f"MFIX's slip production (as slip_production_koch_sangani), the start "
                                                f"perturbed by +-{PERTURBATION:.0%} per cell (as perturbed)",
                                                slip_production("KochSangani")),
@@ -284,6 +289,12 @@ SEED000_VARIANTS = {
 # The jet bed (Tsuji's, tfm_jet_bed): its steady spout against the same measures
 SEED000_JET_VARIANTS = {
     "jet_template": ("the jet bed's template: e 0.86 (Table 1), otherwise as the uniform bed's", []),
+    "jet_slip_production_koch_sangani_restitution_0.695": (f"the jet bed with MFIX's slip production at e = "
+                                                           f"{E_EFFECTIVE_JET:.3f} (Jenkins & Zhang's effective e): the peer",
+                                                           PEER["jet"]),
+    "jet_slip_production_koch_sangani_restitution_0.695_perturbed": (
+        f"the jet bed's peer (as jet_slip_production_koch_sangani_restitution_0.695) from a start perturbed by "
+        f"+-{PERTURBATION:.0%} per cell (as the study's realizations)", PEER["jet"]),
     "jet_restitution_0.695": (f"the jet bed at e = {E_EFFECTIVE_JET:.3f}, Jenkins & Zhang's effective e of Table 1's e and "
                               "mu (0.86, 0.2)", [restitution(f"{E_EFFECTIVE_JET:.4f}", "0.86")]),
 }
@@ -381,7 +392,8 @@ VARIANTS = {**{name: ("seed000",) + v for name, v in SEED000_VARIANTS.items()},
 DEFAULT_END_TIME = {"seed000": 6.0, "seed000_jet": 6.0, "fluidised_bed": 0.6}  # s, unless a variant's own below
 END_TIME = {"fluidised_bed_particles_2.5mm": 2.0, "fluidised_bed_particles_2.5mm_restitution_0.97": 2.0,
             **{name: 2.0 for name in TOWARDS_SEED000}, LONG_CHAIN: 6.0}
-CHANGES_AFTER_PREPARE = {"perturbed", "slip_production_koch_sangani_perturbed"}
+CHANGES_AFTER_PREPARE = {"perturbed", "slip_production_koch_sangani_perturbed",
+                         "jet_slip_production_koch_sangani_restitution_0.695_perturbed"}
 CHANGES_BEFORE_PREPARE = {"inlet_perturbed"}
 
 
@@ -397,6 +409,17 @@ def edit(path, pattern, replacement, expected=1):
         raise MechanismError(f"{path}: pattern {pattern!r} matched {count} times, not {expected}")
     with open(path, "w") as f:
         f.write(new)
+
+
+def apply_edits(case, edits):
+    """A variant's edits in the case folder: (file, pattern, replacement[, matches]) each, a
+    pattern of None writing the file."""
+    for path, pattern, replacement, *expected in edits:
+        if pattern is None:
+            with open(os.path.join(case, path), "w") as f:
+                f.write(replacement)
+        else:
+            edit(os.path.join(case, path), pattern, replacement, *expected)
 
 
 def set_control(case, end_time, write_interval):
@@ -496,12 +519,7 @@ def run_variant(name, end_time):
     template, _, edits = VARIANTS[name]
     source = {"seed000": TEMPLATE, "seed000_jet": JET_TEMPLATE}.get(template) or fluidised_bed_template()
     shutil.copytree(source, case, ignore=lambda folder, names: [n for n in names if is_output(n) and n != "0"])
-    for path, pattern, replacement, *expected in edits:
-        if pattern is None:
-            with open(os.path.join(case, path), "w") as f:
-                f.write(replacement)
-        else:
-            edit(os.path.join(case, path), pattern, replacement, *expected)
+    apply_edits(case, edits)
     set_control(case, end_time or END_TIME.get(name, DEFAULT_END_TIME[template]), WRITE_INTERVAL[template])
     if name in CHANGES_BEFORE_PREPARE:
         perturb_inlet(case)

@@ -34,12 +34,7 @@ def run_case(name):
     case = scratch(f"tfm_bubbles_{name}")
     shutil.rmtree(case, ignore_errors=True)
     shutil.copytree(mechanism.TEMPLATE, case, ignore=lambda folder, names: [n for n in names if mechanism.is_output(n)])
-    for path, pattern, replacement, *expected in mechanism.VARIANTS[name][2]:
-        if pattern is None:
-            with open(os.path.join(case, path), "w") as f:
-                f.write(replacement)
-        else:
-            mechanism.edit(os.path.join(case, path), pattern, replacement, *expected)
+    mechanism.apply_edits(case, mechanism.VARIANTS[name][2])
     mechanism.set_control(case, END_TIME, mechanism.WRITE_INTERVAL["seed000"])
     for step in ("Allprepare", "Allsolve"):
         with open(os.path.join(case, f"log.{step}"), "w") as log:
