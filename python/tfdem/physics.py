@@ -160,3 +160,11 @@ class PlanePoiseuille:
 
     def pressure_drop(self, length):
         return 12 * self.mu * self.u_mean * length / self.h ** 2
+
+
+def jenkins_zhang_effective_restitution(e, mu):
+    """The effective normal restitution of rough, frictional spheres for a kinetic theory of
+    smooth ones, e - 3/2 mu exp(-3 mu) (Jenkins & Zhang 2002, Phys. Fluids 14; Chialvo &
+    Sundaresan 2013 use it the same way): the dissipation sliding friction adds. For mu up to
+    ~0.5. Not an equation of the seeds."""
+    return e - 1.5 * mu * math.exp(-3 * mu)

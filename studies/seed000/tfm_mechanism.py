@@ -50,7 +50,8 @@ sys.path.insert(0, os.path.join(HERE, "..", "..", "python"))
 from tfdem.case import Case, dict_entry  # noqa: E402
 from tfdem.errors import Reported  # noqa: E402
 from tfdem.outputs import OutputError, field, joined_series, pressure_series, probes, times  # noqa: E402
-from tfdem.physics import wen_yu_minimum_fluidization  # noqa: E402
+from tfdem import tfm_models  # noqa: E402
+from tfdem.physics import jenkins_zhang_effective_restitution, wen_yu_minimum_fluidization  # noqa: E402
 
 TEMPLATE = os.path.join(HERE, "tfm_bubbling_bed")
 JET_TEMPLATE = os.path.join(HERE, "tfm_jet_bed")
@@ -65,13 +66,11 @@ PHASES = "constant/phaseProperties"
 WRITE_INTERVAL = {"seed000": 0.1, "seed000_jet": 0.1, "fluidised_bed": 0.02}  # s, per template
 # Jenkins & Zhang (2002): the effective restitution of rough spheres, e - 3/2 mu exp(-3 mu),
 # for Table 1's e and the DEM's friction mu: 0.97 and 0.1 (uniform bed), 0.86 and 0.2 (jet bed)
-E_EFFECTIVE = 0.97 - 1.5 * 0.1 * math.exp(-3 * 0.1)
-E_EFFECTIVE_JET = 0.86 - 1.5 * 0.2 * math.exp(-3 * 0.2)
+E_EFFECTIVE = jenkins_zhang_effective_restitution(0.97, 0.1)
+E_EFFECTIVE_JET = jenkins_zhang_effective_restitution(0.86, 0.2)
 # The conservative granular pressure force, -grad P_s (tfm_models/kineticTheoryConservative.H)
-KINETIC_THEORY_LIBRARY = os.path.join(os.environ.get("TFDEM_BUILD", os.path.join(HERE, "..", "..", "build")),
-                                      "tfm_models", "libtfdemKineticTheory.so")
-LOAD_LIBRARY = ("system/controlDict", r"\napplication\s",
-                f'\nlibs            ("{os.path.abspath(KINETIC_THEORY_LIBRARY)}");\napplication ')
+KINETIC_THEORY_LIBRARY = tfm_models.LIBRARY
+LOAD_LIBRARY = ("system/controlDict", r"\napplication\s", f"\n{tfm_models.library_entry()}\napplication ")
 CONSERVATIVE = [(KINETIC, r"RASModel\s+kineticTheory;", "RASModel        kineticTheoryConservative;"),
                 (KINETIC, r"kineticTheoryCoeffs", "kineticTheoryConservativeCoeffs"),
                 LOAD_LIBRARY]
@@ -81,10 +80,7 @@ def slip_production(production):
     """The edits that replace v1912's production of Theta by gas-particle slip (Gidaspow's, with
     beta^2) by `production`, KochSangani (MFIX's) or none (tfm_models/granularSlipProduction.H):
     a new constant/fvOptions (an edit whose pattern is None writes the file)."""
-    options = ("FoamFile\n{\n    version     2.0;\n    format      ascii;\n    class       dictionary;\n"
-               "    object      fvOptions;\n}\n\nslipProduction\n{\n    type            granularSlipProduction;\n"
-               f"    phase           particles;\n    production      {production};\n}}\n")
-    return [LOAD_LIBRARY, ("constant/fvOptions", None, options)]
+    return [LOAD_LIBRARY, ("constant/fvOptions", None, tfm_models.slip_production_options(production))]
 
 
 def restitution(e, template_e="0.97"):

@@ -22,13 +22,13 @@ import math
 import os
 import re
 
-from tfdem import BUILD_DIR, STUDIES
+from tfdem import STUDIES, tfm_models
 from tfdem.case import Case
 from tfdem.outputs import field
 from tfdem_testlib import Checks, fail, run, scratch
 
 TEMPLATE = os.path.join(STUDIES, "seed000", "tfm_bubbling_bed")
-LIBRARY = os.path.join(BUILD_DIR, "tfm_models", "libtfdemKineticTheory.so")
+LIBRARY = tfm_models.LIBRARY
 ALPHA_S = 0.4
 THETA_0 = 2e-3  # m^2/s^2
 GAS_VISCOSITY = 1e-3  # Pa s
@@ -53,12 +53,6 @@ def number(path, key):
     return float(re.search(rf"\n\s*{key}\s+([-+0-9.eE]+)\s*;", text).group(1))
 
 
-def fv_options(production):
-    return ("FoamFile\n{\n    version     2.0;\n    format      ascii;\n    class       dictionary;\n"
-            "    object      fvOptions;\n}\nslipProduction\n{\n    type            granularSlipProduction;\n"
-            f"    phase           particles;\n    production      {production};\n}}\n")
-
-
 def column(name, production):
     """The column case under build/test-runs/name, run one step (production None: v1912's own)."""
     path = Case(TEMPLATE).copy_to(scratch(name), extra=("Allprepare", "0.orig")).path
@@ -73,9 +67,9 @@ def column(name, production):
     edit(os.path.join(path, "constant/thermophysicalProperties.air"), r"\n(\s*)mu\s+[^;]*;", f"\n\\g<1>mu {GAS_VISCOSITY:g};")
     edit(os.path.join(path, "system/fvSolution"), r"(\"Theta\.\*\"\s*\{[^}]*tolerance\s+)[^;]*;", r"\g<1>1e-14;")
     if production:
-        edit(control, r"\napplication\s", f'\nlibs            ("{LIBRARY}");\napplication ')
+        edit(control, r"\napplication\s", f"\n{tfm_models.library_entry()}\napplication ")
         with open(os.path.join(path, "constant/fvOptions"), "w") as f:
-            f.write(fv_options(production))
+            f.write(tfm_models.slip_production_options(production))
     theta = os.path.join(path, "0.orig/Theta.particles")
     edit(theta, r"\nreferenceLevel\s[^;]*;", "\n")
     edit(theta, r"inlet\s*\{[^}]*\}", "inlet\n    {\n        type            zeroGradient;\n    }")

@@ -18,7 +18,7 @@ from tfdem.engines import hard_sphere_laws, restitution_of_damping
 from tfdem.liggghts import DemScript, ScriptError
 from tfdem.outputs import OutputError, dump_frames, fix_print, joined_series
 from tfdem.packing import POUR_SCRIPT, at_rest, jiggle, largest_overlap, packing_settings, script_stiffness, set_atom_types, to_mid_plane
-from tfdem.physics import slab_solid_fraction
+from tfdem.physics import jenkins_zhang_effective_restitution, slab_solid_fraction
 from tfdem.run import RunError, command, decompose, mesh_cells
 from tfdem.stats import batch_means
 
@@ -486,6 +486,11 @@ def main():
 
     check_hard_sphere_laws(root)
     check_contact_definitions(root)
+
+    # Jenkins & Zhang's effective restitution by hand: 0.97 - 0.15 exp(-0.3) = 0.97 - 0.15 x 0.7408182
+    e = jenkins_zhang_effective_restitution(0.97, 0.1)
+    check("Jenkins & Zhang's effective e of e 0.97, mu 0.1 is 0.8588773", abs(e - 0.8588773) < 1e-7, f"{e:.8f}")
+    check("a frictionless sphere keeps its e", jenkins_zhang_effective_restitution(0.9, 0.0) == 0.9)
 
     print(f"{'FAILED: ' + ', '.join(failures) if failures else 'all passed'}")
     sys.exit(1 if failures else 0)

@@ -38,7 +38,8 @@ LAWS = {"beetstra": {"coupling.drag_law": "beetstra"},
 VARIANTS = with_hard_sphere(LAWS)
 AFTER_INJECTION = (0.1, 0.2, 0.4)  # s, seed 001 Fig. 8
 # the two-fluid model's results beside the DPM's in bubble.png (tfm.py)
-TFM_RESULTS = {"tfm": "TFM (kinetic theory)", "tfm_refine2": "TFM, cells halved"}
+TFM_RESULTS = {"tfm": "TFM (v1912 kinetic theory)", "tfm_refine2": "TFM, cells halved",
+               "tfm_peer": "TFM peer (MFIX slip production, effective e)"}
 
 
 class BubbleRun(VariantRun):

@@ -1,10 +1,14 @@
 """Bokkers' single bubble (seed 001 Fig. 8-9) with the two-fluid model, beside the DPM.
 
-    tfm.py run [--refine 2]      # the TFM case tfm/ in runs/tfm/ by Debian's twoPhaseEulerFoam
-    tfm.py report [--refine 2]   # the bubble and the coloured layer's mixing, results/tfm.csv
+    tfm.py run [--refine 2] [--solids peer]      # the TFM case tfm/ in runs/tfm/ by Debian's twoPhaseEulerFoam
+    tfm.py report [--refine 2] [--solids peer]   # the bubble and the coloured layer's mixing, results/tfm.csv
 
 `--refine k` runs and reports the case on cells k times smaller each way (runs/tfm_refine<k>/,
-results/tfm_refine<k>.csv): how much of the TFM's mixing is its grid's.
+results/tfm_refine<k>.csv): how much of the TFM's mixing is its grid's. `--solids peer` runs the
+kinetic-theory peer of studies/seed000 instead of v1912's kinetic theory as shipped
+(runs/tfm_peer/, results/tfm_peer.csv): Theta's production by gas slip as MFIX has it (Koch &
+Sangani 1999; tfm_models/granularSlipProduction) and Jenkins & Zhang's (2002) effective
+restitution of the DPM case's e_n and friction (in.bed).
 
 The case (tfm/, OpenFOAM v1912's kinetic theory with seed 001's restitution 0.97, Ergun/Wen-Yu
 drag) takes from this DPM case what they share, read from its files: the grid and its jet
@@ -28,20 +32,42 @@ import re
 import shutil
 import sys
 
-from tfdem import bubble, outputs
+from tfdem import bubble, outputs, tfm_models
 from tfdem.case import Case
 from tfdem.errors import Reported
 from tfdem.packing import packing_settings
+from tfdem.physics import jenkins_zhang_effective_restitution
 from tfdem.run import run
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 TEMPLATE = os.path.join(HERE, "tfm")
 
 
-def paths(refine):
-    """(run folder, results file) of the case on cells `refine` times smaller."""
-    name = "tfm" if refine == 1 else f"tfm_refine{refine}"
+def paths(refine, solids="stock"):
+    """(run folder, results file) of the case on cells `refine` times smaller, with `solids`."""
+    name = "tfm" + ("" if solids == "stock" else f"_{solids}") + ("" if refine == 1 else f"_refine{refine}")
     return os.path.join(HERE, "runs", name), os.path.join(HERE, "results", name + ".csv")
+
+
+def make_peer(dpm, tfm):
+    """The kinetic-theory peer in the TFM case: MFIX's slip production (constant/fvOptions, the
+    library in controlDict) and the effective restitution of the DPM's e_n and friction."""
+    script = dpm.dem()
+    restitution = jenkins_zhang_effective_restitution(script.value(script.variable("en")),
+                                                      script.value(script.variable("mu")))
+    kinetic = tfm.file("constant", "turbulenceProperties.particles")
+    text, count = re.subn(r"(\n\s*e\s+)[0-9.]+;", rf"\g<1>{restitution:.4f};", open(kinetic).read())
+    if count != 1:
+        raise SystemExit(f"{kinetic}: no one 'e <restitution>;' entry")
+    open(kinetic, "w").write(text)
+    control = tfm.file("system", "controlDict")
+    text, count = re.subn(r"\napplication\s", f"\n{tfm_models.library_entry()}\napplication ", open(control).read())
+    if count != 1:
+        raise SystemExit(f"{control}: no one 'application' entry")
+    open(control, "w").write(text)
+    with open(tfm.file("constant", "fvOptions"), "w") as f:
+        f.write(tfm_models.slip_production_options("KochSangani"))
+    print(f"tfm: the kinetic-theory peer, e {restitution:.4f}, Koch & Sangani's slip production")
 # The poured bed's solids fraction (packing.yaml's note), between the frictional stress's
 # onset (0.58) and its packing limit (0.62): the bed starts packed and friction-supported
 ALPHA_PACKED = 0.6
@@ -91,11 +117,13 @@ def refine_blocks(path, factor):
     open(path, "w").write(text)
 
 
-def prepare(run_path, refine=1):
+def prepare(run_path, refine=1, solids="stock"):
     dpm = Case(HERE)
     shutil.rmtree(run_path, ignore_errors=True)
     shutil.copytree(TEMPLATE, run_path)
     tfm = Case(run_path)
+    if solids == "peer":
+        make_peer(dpm, tfm)
     if refine > 1:
         refine_blocks(tfm.file("system", "blockMeshDict"), refine)
     air = tfm.file("0.orig", "U.air")
@@ -158,13 +186,15 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("command", choices=("run", "report"))
     parser.add_argument("--refine", type=int, default=1, help="cells this many times smaller each way")
+    parser.add_argument("--solids", choices=("stock", "peer"), default="stock",
+                        help="v1912's kinetic theory as shipped, or the peer of studies/seed000 (default stock)")
     args = parser.parse_args(argv)
     if args.refine < 1:
         parser.error(f"--refine must be a whole number of 1 or more, got {args.refine}")
-    run_path, results = paths(args.refine)
+    run_path, results = paths(args.refine, args.solids)
     try:
         if args.command == "run":
-            prepare(run_path, args.refine)
+            prepare(run_path, args.refine, args.solids)
             run(["twoPhaseEulerFoam"], run_path, "log.twoPhaseEulerFoam")
         report(run_path, results)
     except Reported as error:

@@ -1,0 +1,30 @@
+"""Our kinetic-theory models for Debian's twoPhaseEulerFoam (tfm_models/, the library
+libtfdemKineticTheory.so) and the case edits that select them, shared by the TFM studies and
+tutorials.
+
+- granularSlipProduction (an fvOption, constant/fvOptions): the production of granular
+  temperature by gas-particle slip as MFIX has it (Koch & Sangani 1999, J. Fluid Mech. 400) or
+  none, in place of v1912's Gidaspow form (tfm_models/granularSlipProduction.H).
+- kineticTheoryConservative (RASModel): the solids pressure force as -grad P_s.
+"""
+import os
+
+from tfdem import BUILD_DIR
+
+LIBRARY = os.path.abspath(os.path.join(BUILD_DIR, "tfm_models", "libtfdemKineticTheory.so"))
+SLIP_PRODUCTIONS = ("KochSangani", "none")
+
+
+def library_entry():
+    """The controlDict line that loads the library."""
+    return f'libs            ("{LIBRARY}");'
+
+
+def slip_production_options(production, phase="particles"):
+    """constant/fvOptions selecting granularSlipProduction for `phase` with `production`
+    (one of SLIP_PRODUCTIONS)."""
+    if production not in SLIP_PRODUCTIONS:
+        raise ValueError(f"slip production {production!r}: one of {', '.join(SLIP_PRODUCTIONS)}")
+    return ("FoamFile\n{\n    version     2.0;\n    format      ascii;\n    class       dictionary;\n"
+            "    object      fvOptions;\n}\n\nslipProduction\n{\n    type            granularSlipProduction;\n"
+            f"    phase           {phase};\n    production      {production};\n}}\n")
