@@ -20,15 +20,12 @@ alpha)^3 (Carnahan & Starling), du the slip the step ends with (read from the wr
 """
 import math
 import os
-import re
 
 from tfdem import STUDIES, tfm_models
-from tfdem.case import Case
 from tfdem.outputs import field
-from tfdem_testlib import Checks, fail, run, scratch
+from tfdem_testlib import Checks, dict_number, edit_once, require_tfm_models, run, set_internal_field, tfm_column
 
 TEMPLATE = os.path.join(STUDIES, "seed000", "tfm_bubbling_bed")
-LIBRARY = tfm_models.LIBRARY
 ALPHA_S = 0.4
 THETA_0 = 2e-3  # m^2/s^2
 GAS_VISCOSITY = 1e-3  # Pa s
@@ -37,60 +34,35 @@ CELLS = 20
 U_INFLOW = 1.92  # m/s, the template's superficial inflow
 
 
-def edit(path, pattern, replacement):
-    with open(path) as f:
-        text = f.read()
-    new, count = re.subn(pattern, replacement, text)
-    if count != 1:
-        fail(f"{path}: {pattern!r} matched {count} times")
-    with open(path, "w") as f:
-        f.write(new)
-
-
-def number(path, key):
-    with open(path) as f:
-        text = re.sub(r"//.*", "", f.read())
-    return float(re.search(rf"\n\s*{key}\s+([-+0-9.eE]+)\s*;", text).group(1))
-
-
 def column(name, production):
     """The column case under build/test-runs/name, run one step (production None: v1912's own)."""
-    path = Case(TEMPLATE).copy_to(scratch(name), extra=("Allprepare", "0.orig")).path
-    edit(os.path.join(path, "system/blockMeshDict"), r"\nnx\s+15;", "\nnx      1;")
-    edit(os.path.join(path, "system/blockMeshDict"), r"\nny\s+45;", f"\nny      {CELLS};")
+    path = tfm_column(name, CELLS, STEP)
     control = os.path.join(path, "system/controlDict")
-    edit(control, r"\ndeltaT\s[^;]*;", f"\ndeltaT          {STEP:g};")
-    edit(control, r"\nendTime\s[^;]*;", f"\nendTime {STEP:g};")
-    edit(control, r"\nwriteInterval\s[^;]*;", f"\nwriteInterval {STEP:g};")
-    edit(control, r"\nwritePrecision\s[^;]*;", "\nwritePrecision  15;")
-    edit(control, r"\nadjustTimeStep\s[^;]*;", "\nadjustTimeStep  no;")
-    edit(os.path.join(path, "constant/thermophysicalProperties.air"), r"\n(\s*)mu\s+[^;]*;", f"\n\\g<1>mu {GAS_VISCOSITY:g};")
-    edit(os.path.join(path, "system/fvSolution"), r"(\"Theta\.\*\"\s*\{[^}]*tolerance\s+)[^;]*;", r"\g<1>1e-14;")
+    edit_once(os.path.join(path, "constant/thermophysicalProperties.air"), r"\n(\s*)mu\s+[^;]*;", f"\n\\g<1>mu {GAS_VISCOSITY:g};")
+    edit_once(os.path.join(path, "system/fvSolution"), r"(\"Theta\.\*\"\s*\{[^}]*tolerance\s+)[^;]*;", r"\g<1>1e-14;")
     if production:
-        edit(control, r"\napplication\s", f"\n{tfm_models.library_entry()}\napplication ")
+        edit_once(control, r"\napplication\s", f"\n{tfm_models.library_entry()}\napplication ")
         with open(os.path.join(path, "constant/fvOptions"), "w") as f:
             f.write(tfm_models.slip_production_options(production))
     theta = os.path.join(path, "0.orig/Theta.particles")
-    edit(theta, r"\nreferenceLevel\s[^;]*;", "\n")
-    edit(theta, r"inlet\s*\{[^}]*\}", "inlet\n    {\n        type            zeroGradient;\n    }")
+    edit_once(theta, r"\nreferenceLevel\s[^;]*;", "\n")
+    edit_once(theta, r"inlet\s*\{[^}]*\}", "inlet\n    {\n        type            zeroGradient;\n    }")
     run(["./Allprepare"], path, "log.Allprepare")
-    edit(os.path.join(path, "0/alpha.particles"), r"internalField\s+[^;]*;", f"internalField   uniform {ALPHA_S};")
-    edit(os.path.join(path, "0/Theta.particles"), r"internalField\s+[^;]*;", f"internalField   uniform {THETA_0:g};")
-    edit(os.path.join(path, "0/U.air"), r"internalField\s+[^;]*;",
-         f"internalField   uniform (0 {U_INFLOW / (1 - ALPHA_S):.12g} 0);")
+    set_internal_field(os.path.join(path, "0/alpha.particles"), f"uniform {ALPHA_S}")
+    set_internal_field(os.path.join(path, "0/Theta.particles"), f"uniform {THETA_0:g}")
+    set_internal_field(os.path.join(path, "0/U.air"), f"uniform (0 {U_INFLOW / (1 - ALPHA_S):.12g} 0)")
     run(["twoPhaseEulerFoam"], path, "log.twoPhaseEulerFoam")
     return path
 
 
 def main():
     checks = Checks()
-    if not os.path.isfile(LIBRARY):
-        fail(f"{LIBRARY} not built (scripts/setup.sh builds tfm_models/)")
+    require_tfm_models()
     props = os.path.join(TEMPLATE, "constant")
-    rho_s = number(os.path.join(props, "thermophysicalProperties.particles"), "rho")
-    rho_g = number(os.path.join(props, "thermophysicalProperties.air"), "rho")
-    e = number(os.path.join(props, "turbulenceProperties.particles"), "e")
-    d = number(os.path.join(props, "phaseProperties"), "d")
+    rho_s = dict_number(os.path.join(props, "thermophysicalProperties.particles"), "rho")
+    rho_g = dict_number(os.path.join(props, "thermophysicalProperties.air"), "rho")
+    e = dict_number(os.path.join(props, "turbulenceProperties.particles"), "e")
+    d = dict_number(os.path.join(props, "phaseProperties"), "d")
     middle, written = CELLS // 2, f"{STEP:g}"
     theta_1 = {}
     for production in (None, "none", "KochSangani"):

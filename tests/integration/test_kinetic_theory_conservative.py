@@ -18,35 +18,17 @@ the solver takes Theta as it was at the step's start).
 """
 import math
 import os
-import re
 
-from tfdem import BUILD_DIR, STUDIES
+from tfdem import STUDIES, tfm_models
 from tfdem.case import Case
 from tfdem.outputs import field
-from tfdem_testlib import Checks, fail, run, scratch
+from tfdem_testlib import Checks, dict_number, edit_once, require_tfm_models, run, set_internal_field, tfm_column
 
 TEMPLATE = os.path.join(STUDIES, "seed000", "tfm_bubbling_bed")
-LIBRARY = os.path.join(BUILD_DIR, "tfm_models", "libtfdemKineticTheory.so")
 ALPHA_S = 0.4
 THETA_BOTTOM, THETA_TOP = 0.01, 0.05  # m^2/s^2 at the column's bottom and top faces
 STEP = 1e-5  # s
 CELLS = 20
-
-
-def edit(path, pattern, replacement):
-    with open(path) as f:
-        text = f.read()
-    new, count = re.subn(pattern, replacement, text)
-    if count != 1:
-        fail(f"{path}: {pattern!r} matched {count} times")
-    with open(path, "w") as f:
-        f.write(new)
-
-
-def number(path, key):
-    with open(path) as f:
-        text = re.sub(r"//.*", "", f.read())
-    return float(re.search(rf"\n\s*{key}\s+([-+0-9.eE]+)\s*;", text).group(1))
 
 
 def scalar_field(values):
@@ -55,42 +37,34 @@ def scalar_field(values):
 
 def column(name, conservative):
     """The column case under build/test-runs/name, run one step; its path."""
-    path = Case(TEMPLATE).copy_to(scratch(name), extra=("Allprepare", "0.orig")).path
-    edit(os.path.join(path, "system/blockMeshDict"), r"\nnx\s+15;", "\nnx      1;")
-    edit(os.path.join(path, "system/blockMeshDict"), r"\nny\s+45;", f"\nny      {CELLS};")
+    path = tfm_column(name, CELLS, STEP)
     control = os.path.join(path, "system/controlDict")
-    edit(control, r"\ndeltaT\s[^;]*;", f"\ndeltaT          {STEP:g};")
-    edit(control, r"\nendTime\s[^;]*;", f"\nendTime {STEP:g};")
-    edit(control, r"\nwriteInterval\s[^;]*;", f"\nwriteInterval {STEP:g};")
-    edit(control, r"\nwritePrecision\s[^;]*;", "\nwritePrecision  15;")
-    edit(control, r"\nadjustTimeStep\s[^;]*;", "\nadjustTimeStep  no;")
     if conservative:
-        edit(control, r"\napplication\s", f'\nlibs            ("{LIBRARY}");\napplication ')
+        edit_once(control, r"\napplication\s", f"\n{tfm_models.library_entry()}\napplication ")
         kinetic = os.path.join(path, "constant/turbulenceProperties.particles")
-        edit(kinetic, r"RASModel\s+kineticTheory;", "RASModel        kineticTheoryConservative;")
-        edit(kinetic, r"kineticTheoryCoeffs", "kineticTheoryConservativeCoeffs")
+        edit_once(kinetic, r"RASModel\s+kineticTheory;", "RASModel        kineticTheoryConservative;")
+        edit_once(kinetic, r"kineticTheoryCoeffs", "kineticTheoryConservativeCoeffs")
     run(["./Allprepare"], path, "log.Allprepare")
     height = 0.45
     centres = [(j + 0.5) * height / CELLS for j in range(CELLS)]
     theta = [THETA_BOTTOM + (THETA_TOP - THETA_BOTTOM) * y / height for y in centres]
-    edit(os.path.join(path, "0/alpha.particles"), r"internalField\s+[^;]*;", f"internalField   uniform {ALPHA_S};")
-    edit(os.path.join(path, "0/Theta.particles"), r"internalField\s+[^;]*;", f"internalField   {scalar_field(theta)};")
+    set_internal_field(os.path.join(path, "0/alpha.particles"), f"uniform {ALPHA_S}")
+    set_internal_field(os.path.join(path, "0/Theta.particles"), scalar_field(theta))
     air = os.path.join(path, "0/U.air")
-    edit(air, r"internalField\s+[^;]*;", "internalField   uniform (0 0 0);")
-    edit(air, r"inlet\s*\{[^}]*\}", "inlet\n    {\n        type            noSlip;\n    }")
+    set_internal_field(air, "uniform (0 0 0)")
+    edit_once(air, r"inlet\s*\{[^}]*\}", "inlet\n    {\n        type            noSlip;\n    }")
     run(["twoPhaseEulerFoam"], path, "log.twoPhaseEulerFoam")
     return path
 
 
 def main():
     checks = Checks()
-    if not os.path.isfile(LIBRARY):
-        fail(f"{LIBRARY} not built (scripts/setup.sh builds tfm_models/)")
+    require_tfm_models()
     stock, ours = column("kinetic_theory_stock", False), column("kinetic_theory_conservative", True)
     props = os.path.join(TEMPLATE, "constant")
-    rho_s = number(os.path.join(props, "thermophysicalProperties.particles"), "rho")
-    rho_g = number(os.path.join(props, "thermophysicalProperties.air"), "rho")
-    e = number(os.path.join(props, "turbulenceProperties.particles"), "e")
+    rho_s = dict_number(os.path.join(props, "thermophysicalProperties.particles"), "rho")
+    rho_g = dict_number(os.path.join(props, "thermophysicalProperties.air"), "rho")
+    e = dict_number(os.path.join(props, "turbulenceProperties.particles"), "e")
     g = abs(Case(TEMPLATE).gravity_magnitude())
     alpha_g = 1 - ALPHA_S
     g0 = (1 - ALPHA_S / 2) / (1 - ALPHA_S) ** 3

@@ -18,7 +18,7 @@ import subprocess
 import sys
 
 from tfdem import STUDIES
-from tfdem_testlib import Checks, fail, scratch
+from tfdem_testlib import Checks, fail, require_tfm_models, scratch
 
 sys.path.insert(0, os.path.join(STUDIES, "seed000"))
 import tfm_mechanism as mechanism  # noqa: E402
@@ -58,8 +58,7 @@ def spread(case):
 
 def main():
     checks = Checks()
-    if not os.path.isfile(mechanism.KINETIC_THEORY_LIBRARY):
-        fail(f"{mechanism.KINETIC_THEORY_LIBRARY} not built (scripts/setup.sh builds tfm_models/)")
+    require_tfm_models()
     peer, writes = spread(run_case(PEER))
     stock, _ = spread(run_case(STOCK))
     checks.true(f"the peer bubbles: lateral std of alpha_s over {FROM:g}-{END_TIME:g} s above {mechanism.BUBBLING}",

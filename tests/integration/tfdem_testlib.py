@@ -2,12 +2,13 @@
 the test at the end, scratch folders, and running a program as a test step (a failure ends
 the test with the program's output)."""
 import os
+import re
 import shutil
 import sys
 
 import tfdem.run
 from tfdem import BUILD_DIR, SOURCE_DIR  # noqa: F401  (re-exported for the tests)
-from tfdem import TUTORIALS
+from tfdem import STUDIES, TUTORIALS
 from tfdem.case import Case
 from tfdem.fixed_bed import FixedBed
 from tfdem.outputs import probes
@@ -107,3 +108,51 @@ class Checks:
 def fail(message):
     print("FAIL " + message)
     sys.exit(1)
+
+
+def edit_once(path, pattern, replacement):
+    """The file's one match of `pattern` replaced (a test's case edit); fails on 0 or 2+ matches."""
+    with open(path) as f:
+        text = f.read()
+    new, count = re.subn(pattern, replacement, text)
+    if count != 1:
+        fail(f"{path}: {pattern!r} matched {count} times")
+    with open(path, "w") as f:
+        f.write(new)
+
+
+def dict_number(path, key):
+    """The number of an OpenFOAM dictionary's `key value;` entry (comments left out)."""
+    with open(path) as f:
+        text = re.sub(r"//.*", "", f.read())
+    return float(re.search(rf"\n\s*{key}\s+([-+0-9.eE]+)\s*;", text).group(1))
+
+
+def tfm_column(name, cells, step):
+    """studies/seed000's TFM template (tfm_bubbling_bed) as a column one cell wide and `cells`
+    tall under build/test-runs/name, set to run one step of `step` seconds written at 15
+    digits; its path (not yet prepared)."""
+    template = os.path.join(STUDIES, "seed000", "tfm_bubbling_bed")
+    path = Case(template).copy_to(scratch(name), extra=("Allprepare", "0.orig")).path
+    edit_once(os.path.join(path, "system/blockMeshDict"), r"\nnx\s+15;", "\nnx      1;")
+    edit_once(os.path.join(path, "system/blockMeshDict"), r"\nny\s+45;", f"\nny      {cells};")
+    control = os.path.join(path, "system/controlDict")
+    edit_once(control, r"\ndeltaT\s[^;]*;", f"\ndeltaT          {step:g};")
+    edit_once(control, r"\nendTime\s[^;]*;", f"\nendTime {step:g};")
+    edit_once(control, r"\nwriteInterval\s[^;]*;", f"\nwriteInterval {step:g};")
+    edit_once(control, r"\nwritePrecision\s[^;]*;", "\nwritePrecision  15;")
+    edit_once(control, r"\nadjustTimeStep\s[^;]*;", "\nadjustTimeStep  no;")
+    return path
+
+
+def set_internal_field(path, value):
+    """A field file's internalField set to `value` (e.g. "uniform 0.4")."""
+    edit_once(path, r"internalField\s+[^;]*;", f"internalField   {value};")
+
+
+def require_tfm_models():
+    """Fail unless tfm_models/'s library is built; its path."""
+    from tfdem import tfm_models
+    if not os.path.isfile(tfm_models.LIBRARY):
+        fail(f"{tfm_models.LIBRARY} not built (scripts/setup.sh builds tfm_models/)")
+    return tfm_models.LIBRARY
