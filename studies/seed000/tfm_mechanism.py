@@ -265,6 +265,10 @@ SEED000_VARIANTS = {
     "slip_production_koch_sangani_restitution_0.859": (f"MFIX's slip production (as slip_production_koch_sangani) at "
                                                        f"e = {E_EFFECTIVE:.3f}, Jenkins & Zhang's effective e of Table 1's "
                                                        "e and mu: the peer", PEER["uniform"]),
+    "slip_production_koch_sangani_restitution_0.859_conservative": ("the peer (as slip_production_koch_sangani_"
+                                                                    "restitution_0.859) with the solids pressure as "
+                                                                    "-grad P_s (as pressure_conservative): MFIX's "
+                                                                    "form too", PEER["uniform"] + CONSERVATIVE[:2]),
     "slip_production_koch_sangani_perturbed": (f"MFIX's slip production (as slip_production_koch_sangani), the start "
                                                f"perturbed by +-{PERTURBATION:.0%} per cell (as perturbed)",
                                                slip_production("KochSangani")),
