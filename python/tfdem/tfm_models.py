@@ -10,9 +10,22 @@ tutorials.
 import os
 
 from tfdem import BUILD_DIR
+from tfdem.errors import Reported
 
 LIBRARY = os.path.abspath(os.path.join(BUILD_DIR, "tfm_models", "libtfdemKineticTheory.so"))
 SLIP_PRODUCTIONS = ("KochSangani", "none")
+
+
+class TfmModelsError(Reported):
+    """The library is not built."""
+
+
+def check_library():
+    """Raise TfmModelsError unless the library is built (a case that loads it would stop with
+    OpenFOAM's 'Unknown fvOption type' far from the cause)."""
+    if not os.path.isfile(LIBRARY):
+        raise TfmModelsError(f"{LIBRARY}: not built; the TFM models are built with the rest by `./tfdem setup` "
+                             "(scripts/setup.sh, tfm_models/)")
 
 
 def library_entry():

@@ -51,7 +51,7 @@ class Headline:
     def __init__(self, report, replicates, paper, corner):
         self.report, self.paper, self.corner = report, paper, corner
         self.r = replicates.result
-        self.groups = replicates.groups
+        self.groups, self.tfm_groups = replicates.groups, replicates.tfm_groups
         self.w = f"{report.windows[0][0]:g}-{report.windows[0][1]:g}"
         self.runs = report.numbers["runs"]
 
@@ -158,10 +158,8 @@ class Headline:
         realization's, as mean ± error)."""
         start, end = self.report.windows[0]
         out = {}
-        seeds = (self.report.study.get("realizations") or {}).get("seeds") or []
-        peer = [f"jet_tfm_peer_r{k}" for k in range(1, len(seeds) + 1)]
         sources = ([("jet_m1", self.groups.get("jet_m1", []))] + [(n, [n]) for n in ("jet_tfm", "jet_tfm_phase_pressure")]
-                   + [("jet_tfm_peer", peer)])
+                   + [("jet_tfm_peer", self.tfm_groups.get("jet_tfm_peer", []))])
         for name, members in sources:
             members = [m for m in members if m in self.report.records]
             if not members:

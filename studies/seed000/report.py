@@ -304,7 +304,8 @@ class Report:
         self.save(fig, filename)
 
     def fig8(self):
-        names = [n for n in ("jet_m1", "jet_tfm", "jet_tfm_phase_pressure", "jet_tfm_peer_r1") if n in self.data]
+        peer = (self.realizations("jet_tfm_peer") or ["jet_tfm_peer"])[0]
+        names = [n for n in ("jet_m1", "jet_tfm", "jet_tfm_phase_pressure", peer) if n in self.data]
         if "jet_m1" not in names or len(names) < 2:
             return
         start, end = self.windows[0]

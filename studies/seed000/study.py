@@ -20,10 +20,11 @@ import sys
 
 import yaml
 
-from tfdem import TUTORIALS
+from tfdem import TUTORIALS, tfm_models
 from tfdem.batch import BatchError, CaseRun, clock, run_batch
 from tfdem.bed import write_bed_probes
 from tfdem.case import Case, CaseError, set_dict_entries
+from tfdem.errors import Reported
 from tfdem.packing import pour, set_atom_types
 from tfdem.run import DEFAULT_GAS_LAYOUT, RunError, check_gas_layout, command, environment, prepare_gas, run
 
@@ -193,6 +194,7 @@ class Run(CaseRun):
         if solids == "phase_pressure":
             shutil.copy(os.path.join(STUDY_DIR, PHASE_PRESSURE), case.file("constant", "turbulenceProperties.particles"))
         elif solids == "kinetic_theory_peer":
+            tfm_models.check_library()
             tfm_mechanism.apply_edits(case.path, tfm_mechanism.PEER[self.bed])
         run(["./Allprepare"], case.path, "log.Allprepare")
         if "seed" in self.spec:
@@ -316,7 +318,7 @@ def main(argv=None):
                             os.path.join(args.root, "results"),
                             readme if end_time == study["end_time"] and os.path.isfile(readme) else None)
         return 0
-    except (StudyError, BatchError, CaseError, RunError) as e:
+    except (StudyError, BatchError, CaseError, RunError, Reported, tfm_mechanism.MechanismError) as e:
         print(f"study.py: {e}", file=sys.stderr)
         return 2
     except KeyboardInterrupt:

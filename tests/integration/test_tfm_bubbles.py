@@ -13,8 +13,6 @@ profile (0.002-0.004 in the study's 6-s runs); bubbles a few cells wide raise it
 The bound is the study's BUBBLING, 0.02.
 """
 import os
-import shutil
-import subprocess
 import sys
 
 from tfdem import STUDIES
@@ -30,16 +28,12 @@ STOCK = "restitution_0.859"
 
 
 def run_case(name):
-    """The variant's case under build/test-runs/, run to END_TIME; its path."""
+    """The variant's case under build/test-runs/, run to END_TIME as the study runs it; its path."""
     case = scratch(f"tfm_bubbles_{name}")
-    shutil.rmtree(case, ignore_errors=True)
-    shutil.copytree(mechanism.TEMPLATE, case, ignore=lambda folder, names: [n for n in names if mechanism.is_output(n)])
-    mechanism.apply_edits(case, mechanism.VARIANTS[name][2])
-    mechanism.set_control(case, END_TIME, mechanism.WRITE_INTERVAL["seed000"])
-    for step in ("Allprepare", "Allsolve"):
-        with open(os.path.join(case, f"log.{step}"), "w") as log:
-            if subprocess.run([f"./{step}"], cwd=case, stdout=log, stderr=subprocess.STDOUT).returncode:
-                fail(f"{name}: {step} failed; see {case}/log.{step}")
+    try:
+        mechanism.run_case(name, case, END_TIME)
+    except (mechanism.MechanismError, mechanism.Reported) as error:
+        fail(str(error))
     return case
 
 

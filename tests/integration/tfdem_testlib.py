@@ -8,7 +8,7 @@ import sys
 
 import tfdem.run
 from tfdem import BUILD_DIR, SOURCE_DIR  # noqa: F401  (re-exported for the tests)
-from tfdem import STUDIES, TUTORIALS
+from tfdem import STUDIES, TUTORIALS, tfm_models
 from tfdem.case import Case
 from tfdem.fixed_bed import FixedBed
 from tfdem.outputs import probes
@@ -152,7 +152,8 @@ def set_internal_field(path, value):
 
 def require_tfm_models():
     """Fail unless tfm_models/'s library is built; its path."""
-    from tfdem import tfm_models
-    if not os.path.isfile(tfm_models.LIBRARY):
-        fail(f"{tfm_models.LIBRARY} not built (scripts/setup.sh builds tfm_models/)")
+    try:
+        tfm_models.check_library()
+    except tfm_models.TfmModelsError as error:
+        fail(str(error))
     return tfm_models.LIBRARY

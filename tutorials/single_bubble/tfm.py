@@ -118,6 +118,8 @@ def refine_blocks(path, factor):
 
 
 def prepare(run_path, refine=1, solids="stock"):
+    if solids == "peer":
+        tfm_models.check_library()  # before the earlier run is removed
     dpm = Case(HERE)
     shutil.rmtree(run_path, ignore_errors=True)
     shutil.copytree(TEMPLATE, run_path)
