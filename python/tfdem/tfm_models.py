@@ -14,6 +14,10 @@ from tfdem.errors import Reported
 
 LIBRARY = os.path.abspath(os.path.join(BUILD_DIR, "tfm_models", "libtfdemKineticTheory.so"))
 SLIP_PRODUCTIONS = ("KochSangani", "none")
+# The edits of a constant/turbulenceProperties.<solids> file, (pattern, replacement), that select
+# kineticTheoryConservative in place of v1912's kineticTheory, with the same coefficients
+CONSERVATIVE_PRESSURE_EDITS = ((r"RASModel\s+kineticTheory;", "RASModel        kineticTheoryConservative;"),
+                               (r"kineticTheoryCoeffs", "kineticTheoryConservativeCoeffs"))
 
 
 class TfmModelsError(Reported):

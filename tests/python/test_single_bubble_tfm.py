@@ -8,15 +8,20 @@
 - the packed bed's height: 72,600 spheres of 2.5 mm in 0.30 x 0.015 m at solids fraction 0.6
   stand 72600 x 8.1812e-9 m^3 / (0.0045 m^2 x 0.6) = 0.21998 m (by hand);
 - the initial layer of a cell row straddling the top: 0.6 x its share below the top;
-- --refine 2 doubles each block's cells along x and y and leaves the grading alone.
+- --refine 2 doubles each block's cells along x and y and leaves the grading alone;
+- --solids peer sets Jenkins & Zhang's effective restitution of in.bed's e_n 0.97 and friction
+  0.1, 0.97 - 1.5 x 0.1 x exp(-0.3) = 0.858877 (by hand), selects kineticTheoryConservative
+  with its coefficients, loads the library and writes Koch & Sangani's slip production.
 """
 import os
+import re
+import shutil
 import sys
 import tempfile
 
 import numpy
 
-from tfdem import TUTORIALS
+from tfdem import TUTORIALS, tfm_models
 from tfdem.case import Case
 
 sys.path.insert(0, os.path.join(TUTORIALS, "single_bubble"))
@@ -57,6 +62,23 @@ ok = "(38 160 1) simpleGrading (1 1 1)" in refined and "(4 160 1) simpleGrading 
 print(("PASS " if ok else "FAIL ") + "refine 2: (19 80 1) and (2 80 1) become (38 160 1) and (4 160 1), grading kept")
 if not ok:
     failures.append("refine")
+
+with tempfile.TemporaryDirectory() as scratch:
+    peer = os.path.join(scratch, "tfm")
+    shutil.copytree(os.path.join(here, "tfm"), peer)
+    tfm.make_peer(Case(here), Case(peer))
+    kinetic = open(os.path.join(peer, "constant", "turbulenceProperties.particles")).read()
+    control = open(os.path.join(peer, "system", "controlDict")).read()
+    options = open(os.path.join(peer, "constant", "fvOptions")).read()
+    for what, ok in (("peer: e 0.8589", re.search(r"\n\s*e\s+0\.8589;", kinetic) is not None),
+                     ("peer: RASModel kineticTheoryConservative", "RASModel        kineticTheoryConservative;" in kinetic),
+                     ("peer: its coefficients renamed", "kineticTheoryConservativeCoeffs" in kinetic
+                      and "kineticTheoryCoeffs" not in kinetic),
+                     ("peer: the library loaded", tfm_models.library_entry() in control),
+                     ("peer: Koch & Sangani's slip production", "production      KochSangani;" in options)):
+        print(("PASS " if ok else "FAIL ") + what)
+        if not ok:
+            failures.append(what)
 
 print(f"{len(failures)} failed" if failures else "all passed")
 sys.exit(1 if failures else 0)

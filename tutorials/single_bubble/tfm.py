@@ -8,7 +8,8 @@ results/tfm_refine<k>.csv): how much of the TFM's mixing is its grid's. `--solid
 kinetic-theory peer of studies/seed000 instead of v1912's kinetic theory as shipped
 (runs/tfm_peer/, results/tfm_peer.csv): Theta's production by gas slip as MFIX has it (Koch &
 Sangani 1999; tfm_models/granularSlipProduction) and Jenkins & Zhang's (2002) effective
-restitution of the DPM case's e_n and friction (in.bed).
+restitution of the DPM case's e_n and friction (in.bed), with the solids pressure force as
+-grad P_s (tfm_models/kineticTheoryConservative).
 
 The case (tfm/, OpenFOAM v1912's kinetic theory with seed 001's restitution 0.97, Ergun/Wen-Yu
 drag) takes from this DPM case what they share, read from its files: the grid and its jet
@@ -51,14 +52,18 @@ def paths(refine, solids="stock"):
 
 def make_peer(dpm, tfm):
     """The kinetic-theory peer in the TFM case: MFIX's slip production (constant/fvOptions, the
-    library in controlDict) and the effective restitution of the DPM's e_n and friction."""
+    library in controlDict), the effective restitution of the DPM's e_n and friction and the
+    solids pressure force as -grad P_s (kineticTheoryConservative)."""
     script = dpm.dem()
     restitution = jenkins_zhang_effective_restitution(script.value(script.variable("en")),
                                                       script.value(script.variable("mu")))
     kinetic = tfm.file("constant", "turbulenceProperties.particles")
-    text, count = re.subn(r"(\n\s*e\s+)[0-9.]+;", rf"\g<1>{restitution:.4f};", open(kinetic).read())
-    if count != 1:
-        raise SystemExit(f"{kinetic}: no one 'e <restitution>;' entry")
+    text = open(kinetic).read()
+    edits = ((r"(\n\s*e\s+)[0-9.]+;", rf"\g<1>{restitution:.4f};"),) + tfm_models.CONSERVATIVE_PRESSURE_EDITS
+    for pattern, replacement in edits:
+        text, count = re.subn(pattern, replacement, text)
+        if count != 1:
+            raise SystemExit(f"{kinetic}: not one match of {pattern!r}")
     open(kinetic, "w").write(text)
     control = tfm.file("system", "controlDict")
     text, count = re.subn(r"\napplication\s", f"\n{tfm_models.library_entry()}\napplication ", open(control).read())
@@ -67,7 +72,7 @@ def make_peer(dpm, tfm):
     open(control, "w").write(text)
     with open(tfm.file("constant", "fvOptions"), "w") as f:
         f.write(tfm_models.slip_production_options("KochSangani"))
-    print(f"tfm: the kinetic-theory peer, e {restitution:.4f}, Koch & Sangani's slip production")
+    print(f"tfm: the kinetic-theory peer, e {restitution:.4f}, Koch & Sangani's slip production, -grad P_s")
 # The poured bed's solids fraction (packing.yaml's note), between the frictional stress's
 # onset (0.58) and its packing limit (0.62): the bed starts packed and friction-supported
 ALPHA_PACKED = 0.6
