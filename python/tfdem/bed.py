@@ -20,7 +20,12 @@ import numpy
 from tfdem.case import CaseError
 from tfdem.outputs import OutputError, joined_series, particle_statistics, probe_locations
 
-DP_HEIGHT = 0.2  # m: Delta p between the bottom row of cells and the row this far above it
+DP_HEIGHT = 0.2  # m: Delta p between the bed's floor and this far above it
+# Where Delta p's lower level is: the bed's floor (the inlet or a plate's top; seed 000 Fig. 3,
+# "20 cm above the inlet boundary"), or the centre of the bed's first row of cells, the upper
+# level dp_height above that (as the seed 000 study measured before 2026-12-07: a run compared
+# with such a record must be measured the same way)
+DP_FROM = ("inlet", "bottom_row")
 FIELDS = "studyFields"
 PRESSURE = "studyPressure"
 COUPLED_FIELDS = ("voidFraction", "contactForceByWeight", "dragForceByWeight", "granularTemperature")
@@ -49,16 +54,20 @@ def _row_span(case):
     return floor, floor + 0.5 * grid.spacing[1], grid.origin[1] + (grid.counts[1] - 0.5) * grid.spacing[1]
 
 
-def pressure_levels(case, dp_height=DP_HEIGHT):
-    """(bottom, top): the fixed heights (m) Delta p is taken between, the same on every grid:
-    the bed's floor (seed 000 Fig. 3: "at 20 cm above the inlet boundary") and dp_height above
-    it. CaseError when the upper one is above the column's highest row of cell centres."""
+def pressure_levels(case, dp_height=DP_HEIGHT, dp_from="inlet"):
+    """(bottom, top): the heights (m) Delta p is taken between: the bed's floor (seed 000 Fig. 3:
+    "at 20 cm above the inlet boundary"; the same heights on every grid), or with dp_from
+    "bottom_row" the centre of its first row of cells, and dp_height above it. CaseError when
+    the upper one is above the column's highest row of cell centres."""
+    if dp_from not in DP_FROM:
+        raise ValueError(f"dp_from {dp_from!r}: one of {', '.join(DP_FROM)}")
     floor, first, highest = _row_span(case)
-    if not 0 < dp_height <= highest - floor + 1e-9:
+    bottom = floor if dp_from == "inlet" else first
+    if not 0 < dp_height <= highest - bottom + 1e-9:
         raise CaseError(f"{case.path}: a Delta p height of {dp_height:g} m puts its upper level outside the column "
-                        f"(the bed's floor is at y = {floor:g} m, the highest row of cell centres at {highest:g} m); "
-                        f"give a height above 0 and up to {highest - floor:g} m")
-    return floor, floor + dp_height
+                        f"(its lower level is at y = {bottom:g} m, the highest row of cell centres at {highest:g} m); "
+                        f"give a height above 0 and up to {highest - bottom:g} m")
+    return bottom, bottom + dp_height
 
 
 def default_dp_height(case):
@@ -105,21 +114,22 @@ def _points_block(points):
     return "\n".join(f"            ({x:.10g} {y:.10g} {z:.10g})" for x, y, z in points)
 
 
-def pressure_rows(case, dp_height=DP_HEIGHT):
+def pressure_rows(case, dp_height=DP_HEIGHT, dp_from="inlet"):
     """The heights of the rows of cell centres whose p gives p at both levels (pressure_levels,
     level_weights), lowest first."""
-    heights = {round(y, 12) for level in pressure_levels(case, dp_height) for y, _ in level_weights(case, level)}
+    heights = {round(y, 12) for level in pressure_levels(case, dp_height, dp_from)
+               for y, _ in level_weights(case, level)}
     return sorted(heights)
 
 
-def write_bed_probes(case, field_interval, pressure_interval, tfm=False, dp_height=DP_HEIGHT):
+def write_bed_probes(case, field_interval, pressure_interval, tfm=False, dp_height=DP_HEIGHT, dp_from="inlet"):
     """Replace the functions of `case`'s controlDict by the bed probes: every field of the maps
     at every cell centre (every depth's) every field_interval, p at every cell centre of the
     rows either side of the two levels (pressure_rows) every pressure_interval (s). The coupled
     solver samples every so many gas steps; twoPhaseEulerFoam (adjustable step) at run times."""
     grid = case.grid()
-    levels = pressure_levels(case, dp_height)
-    rows = [point for y in pressure_rows(case, dp_height) for point in section_points(grid, y)]
+    levels = pressure_levels(case, dp_height, dp_from)
+    rows = [point for y in pressure_rows(case, dp_height, dp_from) for point in section_points(grid, y)]
     fields = TFM_FIELDS if tfm else COUPLED_FIELDS
     if tfm:
         control = lambda dt: f"writeControl adjustableRunTime; writeInterval {dt:.10g};"
@@ -195,13 +205,14 @@ def section_pressure_drop(p, heights, levels):
 
 class BedOutputs:
     """What a bed run wrote, as arrays: field_t and solids (samples x map cells, each map cell an
-    x, y column averaged over the depth), p_t and dp (p at the floor less p dp_height above it,
-    default default_dp_height; levels: the two heights), theta
+    x, y column averaged over the depth), p_t and dp (p at the floor, or with dp_from
+    "bottom_row" at the first row of cell centres, less p dp_height above it, default
+    default_dp_height; levels: the two heights), theta
     (the granular temperature per map cell; None when the run did not sample it), and for the
     coupled solver the contact and drag force maps and the particle statistics. depth_cells:
     the cells across the depth the maps average (1 for a bed one cell deep)."""
 
-    def __init__(self, case, tfm=False, dp_height=None):
+    def __init__(self, case, tfm=False, dp_height=None, dp_from="inlet"):
         self.case, self.tfm = case, tfm
         self.grid = case.grid()
         nx, ny = self.grid.counts[0], self.grid.counts[1]
@@ -230,7 +241,8 @@ class BedOutputs:
         p = joined_series(path, PRESSURE, "p")
         heights = [location[1] for location in probe_locations(path, PRESSURE)]
         self.p_t = numpy.array([r[0] for r in p])
-        self.levels = pressure_levels(case, dp_height or default_dp_height(case))
+        self.dp_from = dp_from
+        self.levels = pressure_levels(case, dp_height or default_dp_height(case), dp_from)
         self.dp = section_pressure_drop([r[1] for r in p], heights, [level_weights(case, y) for y in self.levels])
 
     def mean_height(self):

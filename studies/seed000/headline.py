@@ -205,7 +205,7 @@ class Headline:
             ("jet: Δp at 20 cm, method 2", "-", self.dp("jet_m2"),
              "method 2 − method 1: " + self.signed_diff(self.diff("method 2 - method 1", "jet_m2 - jet_m1", "dp20 mean"),
                                                          unit="Pa")),
-            ("jet: Δp at 20 cm, TFM peer (kinetic theory, MFIX's slip production, effective e)",
+            ("jet: Δp at 20 cm, TFM peer (kinetic theory, MFIX's slip production and −∇P_s, effective e)",
              "similar mean, smaller fluctuating amplitude", *self.peer_dp("jet")),
             ("jet: Δp at 20 cm, stock TFMs", "similar mean, smaller fluctuating amplitude",
              f"kinetic theory {self.dp_single('jet_tfm')}; phase pressure {self.dp_single('jet_tfm_phase_pressure')}",
@@ -245,7 +245,7 @@ class Headline:
                                                          "mean_height mean"), 100, "cm")
              + "; solids-fraction maps " + self.map_comparison("uniform_m1 vs uniform_m2"),
              self.paper_rejection()),
-            ("uniform: mean particle height, TFM peer (kinetic theory, MFIX's slip production, effective e)",
+            ("uniform: mean particle height, TFM peer (kinetic theory, MFIX's slip production and −∇P_s, effective e)",
              f"{P['mean_height_tfm']} cm (TF-DEM {P['mean_height_m1']} cm: +{P['mean_height_tfm'] - P['mean_height_m1']:.2f})",
              *self.peer_text("uniform", "mean_height", 100, "cm")),
             ("uniform: Δp at 20 cm, TFM peer", "-", *self.peer_dp("uniform")),

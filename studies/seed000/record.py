@@ -4,7 +4,8 @@ particle files stay out of the repository):
 
     run.json       the run's grid (uniform cells), cost (and the coupled solver's split of it,
                    `TFDEM timing`, when its segments printed one) and the map windows kept
-    pressure.csv   t, Delta p at 20 cm (every statistics interval)
+    pressure.csv   t, Delta p at 20 cm (every statistics interval); its header names the
+                   lower level (DP_HEADERS: the inlet, or the bed's bottom row of cells)
     particles.csv  t, mean particle height, bulk coordination number, multicontact ratio,
                    particle count (TFM: t, the solids' mean height)
     maps.csv       the time-averaged maps (solids fraction; TF-DEM also the contact and drag
@@ -23,6 +24,9 @@ import numpy
 META, PRESSURE, PARTICLES, MAPS = "run.json", "pressure.csv", "particles.csv", "maps.csv"
 PARTICLE_COLUMNS = ("mean_height", "bulk_coordination", "multicontact", "particles")
 TFDEM_MAPS, TFM_MAPS = ("solids", "contact", "drag"), ("solids",)
+# pressure.csv's Delta p column per tfdem.bed.DP_FROM: the header says where it was measured
+DP_HEADERS = {"inlet": "dp 20 cm (Pa): p(inlet) - p(20 cm above it)",
+              "bottom_row": "dp 20 cm (Pa): p(bottom row) - p(row 20 cm above)"}
 
 
 class RecordError(Exception):
@@ -47,6 +51,7 @@ class Record:
         self.width = nx * dx
         self.x, self.y = numpy.meshgrid(x0 + dx * (numpy.arange(nx) + 0.5), y0 + dy * (numpy.arange(ny) + 0.5))
         self.p_t, self.dp = pressure
+        self.dp_from = meta["dp_from"]
         self.particles = heights
         self.maps = maps
 
@@ -59,7 +64,7 @@ class Record:
         meta = {"name": d.name, "tfm": d.tfm, "wall_seconds": d.wall, "cpu_seconds": d.cpu,
                 "grid": {"counts": [grid.counts[0], grid.counts[1]], "origin": [grid.origin[0], grid.origin[1]],
                          "spacing": [grid.spacing[0], grid.spacing[1]]},
-                "windows": [list(w) for w in windows]}
+                "windows": [list(w) for w in windows], "dp_from": d.dp_from}
         if getattr(d, "timing", None):
             meta["timing"] = d.timing
         if d.tfm:
@@ -80,7 +85,7 @@ class Record:
         os.makedirs(folder, exist_ok=True)
         with open(os.path.join(folder, META), "w") as f:
             json.dump(self.meta, f, indent=1)
-        _write_csv(os.path.join(folder, PRESSURE), ["t (s)", "dp 20 cm (Pa): p(inlet) - p(20 cm above it)"],
+        _write_csv(os.path.join(folder, PRESSURE), ["t (s)", DP_HEADERS[self.dp_from]],
                    zip(self.p_t, self.dp), ("{:.6g}", "{:.6g}"))
         if self.tfm:
             _write_csv(os.path.join(folder, PARTICLES), ["t (s)", "solids mean height (m)"],
@@ -109,6 +114,7 @@ class Record:
         except ValueError as e:
             raise RecordError(f"{name}: {path} is not JSON ({e})") from None
         pressure = _read_columns(os.path.join(folder, PRESSURE), name, 2)
+        meta["dp_from"] = _dp_from(os.path.join(folder, PRESSURE), name)
         columns = ("t", "mean_height") if meta["tfm"] else ("t",) + PARTICLE_COLUMNS
         heights = dict(zip(columns, _read_columns(os.path.join(folder, PARTICLES), name, len(columns))))
         return cls(name, meta, tuple(pressure), heights, _read_maps(os.path.join(folder, MAPS), name, meta))
@@ -140,6 +146,17 @@ def _write_csv(path, header, rows, formats):
         w.writerow(header)
         for row in rows:
             w.writerow([fmt.format(v) for fmt, v in zip(formats, row)])
+
+
+def _dp_from(path, name):
+    """Where the record's Delta p was measured from (a DP_HEADERS key), read from its header."""
+    with open(path, newline="") as f:
+        header = next(csv.reader(f), [])
+    found = [key for key, text in DP_HEADERS.items() if header[1:2] == [text]]
+    if not found:
+        raise RecordError(f"{name}: {path}: Delta p column {header[1:2]} is none of "
+                          + "; ".join(repr(t) for t in DP_HEADERS.values()))
+    return found[0]
 
 
 def _read_columns(path, name, count):

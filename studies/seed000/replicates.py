@@ -61,7 +61,9 @@ def _cells(spec):
 
 
 def _rest(spec, keys):
-    return {k: v for k, v in spec.items() if k not in keys}
+    """The spec without `keys` and without dp_from: where Delta p is measured is not part of a
+    configuration (same_dp checks the records' levels where Delta p is compared)."""
+    return {k: v for k, v in spec.items() if k not in keys and k != "dp_from"}
 
 
 def grid_pairs(runs, configs):
@@ -207,6 +209,27 @@ class Replicates:
         self.seeds = seeds
         self.scale = report.end_time / report.study["end_time"]
         self.out = None
+        self.dp_from = {config: self._dp_from(config, names)
+                        for config, names in list(self.groups.items()) + list(self.tfm_groups.items())}
+
+    def _dp_from(self, config, names):
+        """Where the configuration's realizations measured Delta p from (record.DP_HEADERS):
+        ValueError when they differ (an ensemble of two measures is not one quantity)."""
+        found = {n: self.report.records[n].dp_from for n in names}
+        if len(set(found.values())) > 1:
+            raise ValueError(f"{config}: its realizations measured Delta p from different levels "
+                             f"({', '.join(f'{n}: {v}' for n, v in found.items())}); record them again from "
+                             "their runs, or run again those measured the old way")
+        return next(iter(found.values()))
+
+    def same_dp(self, *configs):
+        """ValueError unless the configurations measured Delta p from the same level: their
+        differences would carry the gap between the levels (100 Pa or more in these beds)."""
+        found = {c: self.dp_from[c] for c in configs if c in self.dp_from}
+        if len(set(found.values())) > 1:
+            raise ValueError("Delta p compared between runs measured from different levels ("
+                             + ", ".join(f"{c}: {v}" for c, v in found.items()) + "): set dp_from in study.yaml "
+                             "to the other's, or run one of them again")
 
     # Ensembles ------------------------------------------------------------------------------
     def run_value(self, name, key, *path):
@@ -371,6 +394,7 @@ class Replicates:
             for a, b in pairs:
                 if a not in ensembles or b not in ensembles:
                     continue
+                self.same_dp(a, b)
                 for w in self.windows:
                     for key, part in DIFFERENCE_QUANTITIES:
                         d = difference(ensembles[b][w][key][part], ensembles[a][w][key][part])
@@ -393,6 +417,7 @@ class Replicates:
         for dem, tfm in TFM_PAIRS:
             if tfm not in self.tfm_groups or dem not in ensembles:
                 continue
+            self.same_dp(dem, tfm)
             for w in self.windows:
                 for key, part in TFM_QUANTITIES:
                     ours = ensemble([self.run_value(n, w, key)[part] for n in self.tfm_groups[tfm]])
@@ -425,6 +450,7 @@ class Replicates:
         runs = self.report.study["runs"]
         out = {}
         for name, chain in self.grid_chains().items():
+            self.same_dp(*chain)
             h = [representative_cell(runs[c]) for c in chain]
             entry = {"configurations": chain, "cells": h}
             for w in self.windows:

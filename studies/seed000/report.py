@@ -62,7 +62,7 @@ class RunData(BedOutputs):
     numbers')."""
 
     def __init__(self, run):
-        super().__init__(run.case, run.tfm)
+        super().__init__(run.case, run.tfm, dp_from=run.dp_from)
         self.run, self.name = run, run.name
         self.wall = run.wall_seconds()
         self.cpu = run.cpu_seconds()
@@ -242,7 +242,7 @@ class Report:
             s = averaged(r.p_t, r.dp, start, end, self.batch)
             ax.plot(r.p_t, r.dp, lw=0.6, label=f"{n}: {s['mean']:.0f} ± {s['std']:.0f} Pa (mean ± std, {start:g}-{end:g} s)")
         self.save_series(fig, ax, "Δp at 20 cm (Pa)",
-                         "Fig. 3: pressure drop between the bottom cells and 20 cm above, central-jet bed",
+                         "Fig. 3: pressure drop between the inlet and 20 cm above it, central-jet bed",
                          "fig3_jet_pressure_drop.png")
 
     def series_figure(self, key, ylabel, title, filename, paper_lines):

@@ -22,7 +22,7 @@ import yaml
 
 from tfdem import TUTORIALS, tfm_models
 from tfdem.batch import BatchError, CaseRun, clock, run_batch
-from tfdem.bed import write_bed_probes
+from tfdem.bed import DP_FROM, write_bed_probes
 from tfdem.case import Case, CaseError, set_dict_entries
 from tfdem.errors import Reported
 from tfdem.packing import pour, set_atom_types
@@ -37,10 +37,10 @@ class StudyError(Exception):
     """A study definition or run problem, named."""
 
 
-RUN_KEYS = ("bed", "coupling", "refine_x", "refine_y", "gas_step", "tfm", "tfm_solids", "ranks", "gas")
+RUN_KEYS = ("bed", "coupling", "refine_x", "refine_y", "gas_step", "tfm", "tfm_solids", "ranks", "gas", "dp_from")
 # the TFM solids stress: the templates' kinetic theory (v1912's), the phase-pressure model (a file
-# here), or the kinetic-theory peer that bubbles (tfm_mechanism.PEER: MFIX's slip production and
-# Jenkins & Zhang's effective restitution; tfm_README.md)
+# here), or the kinetic-theory peer that bubbles (tfm_mechanism.PEER: MFIX's slip production,
+# Jenkins & Zhang's effective restitution and -grad P_s; tfm_README.md)
 TFM_SOLIDS = ("kinetic_theory", "phase_pressure", "kinetic_theory_peer")
 PHASE_PRESSURE = "tfm_phase_pressure.particles"
 
@@ -80,6 +80,9 @@ def load_study(path=os.path.join(STUDY_DIR, "study.yaml")):
         if "tfm_solids" in spec and (not spec.get("tfm") or spec["tfm_solids"] not in TFM_SOLIDS):
             raise StudyError(f"{path}: run {name}: tfm_solids is for TFM runs (tfm: true) and one of "
                              f"{', '.join(TFM_SOLIDS)}, got {spec['tfm_solids']!r}")
+        if spec.get("dp_from", "inlet") not in DP_FROM:
+            raise StudyError(f"{path}: run {name}: dp_from is where Delta p's lower level is, one of "
+                             f"{', '.join(DP_FROM)}, got {spec['dp_from']!r}")
         if spec.get("tfm") and ("ranks" in spec or "gas" in spec):
             raise StudyError(f"{path}: run {name}: ranks and gas are for the coupled runs; the TFM runs are serial")
         if spec.get("tfm") and (spec.get("refine_x", 1) != 1 or "gas_step" in spec):
@@ -130,6 +133,7 @@ class Run(CaseRun):
         template = bed["tfm_template"] if self.tfm else bed["template"]
         self.template = os.path.join(STUDY_DIR if self.tfm else TUTORIALS, template)
         self.solver = "twoPhaseEulerFoam" if self.tfm else "tfdemFoam"
+        self.dp_from = spec.get("dp_from", "inlet")
 
     def command(self):
         if self.tfm:
@@ -243,8 +247,10 @@ class Run(CaseRun):
 
     def _write_probes(self):
         """The study's function objects (tfdem.bed): the maps at every cell centre and p on
-        the bottom row of cells and the row 20 cm above it (Delta p at 20 cm, Fig. 3)."""
-        write_bed_probes(self.case, self.study["field_interval"], self.study["statistics_interval"], self.tfm)
+        the rows of cells either side of Delta p's levels (at 20 cm, Fig. 3; from the run's
+        dp_from)."""
+        write_bed_probes(self.case, self.study["field_interval"], self.study["statistics_interval"], self.tfm,
+                         dp_from=self.dp_from)
 
 
 def whole_gas_step(target, dem_step, interval):

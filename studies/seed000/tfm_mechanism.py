@@ -71,9 +71,8 @@ E_EFFECTIVE_JET = jenkins_zhang_effective_restitution(0.86, 0.2)
 # The conservative granular pressure force, -grad P_s (tfm_models/kineticTheoryConservative.H)
 KINETIC_THEORY_LIBRARY = tfm_models.LIBRARY
 LOAD_LIBRARY = ("system/controlDict", r"\napplication\s", f"\n{tfm_models.library_entry()}\napplication ")
-CONSERVATIVE = [(KINETIC, r"RASModel\s+kineticTheory;", "RASModel        kineticTheoryConservative;"),
-                (KINETIC, r"kineticTheoryCoeffs", "kineticTheoryConservativeCoeffs"),
-                LOAD_LIBRARY]
+CONSERVATIVE = [(KINETIC, pattern, replacement) for pattern, replacement in tfm_models.CONSERVATIVE_PRESSURE_EDITS] \
+    + [LOAD_LIBRARY]
 
 
 def slip_production(production):
@@ -159,11 +158,15 @@ SEED000_CLOSURES = SEED000_VISCOUS_CLOSURES + [
     (KINETIC, r"JohnsonJacksonSchaefferCoeffs", "SchaefferCoeffs"),
     ("Allprepare", r"\nalpha_s0=0\.6 ", "\nalpha_s0=0.58 ")]
 
-# The kinetic-theory peer that bubbles (tfm_README.md, "The gas heats the solids"): MFIX's
-# production of Theta by slip and Jenkins & Zhang's effective restitution of the bed's Table 1
-# e and friction; per study bed (study.py's tfm_solids: kinetic_theory_peer)
-PEER = {"uniform": slip_production("KochSangani") + [restitution(f"{E_EFFECTIVE:.4f}")],
-        "jet": slip_production("KochSangani") + [restitution(f"{E_EFFECTIVE_JET:.4f}", "0.86")]}
+# MFIX's production of Theta by slip and Jenkins & Zhang's effective restitution of the bed's
+# Table 1 e and friction, per bed: what makes v1912's kinetic theory bubble (tfm_README.md, "The
+# gas heats the solids")
+SLIP_AND_RESTITUTION = {"uniform": slip_production("KochSangani") + [restitution(f"{E_EFFECTIVE:.4f}")],
+                        "jet": slip_production("KochSangani") + [restitution(f"{E_EFFECTIVE_JET:.4f}", "0.86")]}
+# The kinetic-theory peer, per study bed (study.py's tfm_solids: kinetic_theory_peer): those, with
+# the solids pressure force as seed 000 eqs. 4 and 7 write it, -grad P_s (CONSERVATIVE; the
+# library is loaded by the slip production's edits)
+PEER = {bed: edits + CONSERVATIVE[:2] for bed, edits in SLIP_AND_RESTITUTION.items()}
 
 # name: (what changes, [(file, pattern, replacement[, matches])]); patterns are regular
 # expressions that must match exactly once in the template (or `matches` times)
@@ -263,11 +266,11 @@ SEED000_VARIANTS = {
                                      slip_production("KochSangani")),
     "slip_production_koch_sangani_restitution_0.859": (f"MFIX's slip production (as slip_production_koch_sangani) at "
                                                        f"e = {E_EFFECTIVE:.3f}, Jenkins & Zhang's effective e of Table 1's "
-                                                       "e and mu: the peer", PEER["uniform"]),
-    "slip_production_koch_sangani_restitution_0.859_conservative": ("the peer (as slip_production_koch_sangani_"
-                                                                    "restitution_0.859) with the solids pressure as "
-                                                                    "-grad P_s (as pressure_conservative): MFIX's "
-                                                                    "form too", PEER["uniform"] + CONSERVATIVE[:2]),
+                                                       "e and mu", SLIP_AND_RESTITUTION["uniform"]),
+    "slip_production_koch_sangani_restitution_0.859_conservative": ("the peer: as slip_production_koch_sangani_"
+                                                                    "restitution_0.859 with the solids pressure as "
+                                                                    "-grad P_s (as pressure_conservative), MFIX's "
+                                                                    "form", PEER["uniform"]),
     "slip_production_koch_sangani_perturbed": (f"MFIX's slip production (as slip_production_koch_sangani), the start "
                                                f"perturbed by +-{PERTURBATION:.0%} per cell (as perturbed)",
                                                slip_production("KochSangani")),
@@ -289,11 +292,14 @@ SEED000_VARIANTS = {
 SEED000_JET_VARIANTS = {
     "jet_template": ("the jet bed's template: e 0.86 (Table 1), otherwise as the uniform bed's", []),
     "jet_slip_production_koch_sangani_restitution_0.695": (f"the jet bed with MFIX's slip production at e = "
-                                                           f"{E_EFFECTIVE_JET:.3f} (Jenkins & Zhang's effective e): the peer",
-                                                           PEER["jet"]),
+                                                           f"{E_EFFECTIVE_JET:.3f} (Jenkins & Zhang's effective e)",
+                                                           SLIP_AND_RESTITUTION["jet"]),
     "jet_slip_production_koch_sangani_restitution_0.695_perturbed": (
-        f"the jet bed's peer (as jet_slip_production_koch_sangani_restitution_0.695) from a start perturbed by "
-        f"+-{PERTURBATION:.0%} per cell (as the study's realizations)", PEER["jet"]),
+        f"as jet_slip_production_koch_sangani_restitution_0.695 from a start perturbed by "
+        f"+-{PERTURBATION:.0%} per cell (as the study's realizations)", SLIP_AND_RESTITUTION["jet"]),
+    "jet_slip_production_koch_sangani_restitution_0.695_conservative": (
+        "the jet bed's peer: as jet_slip_production_koch_sangani_restitution_0.695 with the solids pressure as "
+        "-grad P_s (as pressure_conservative), MFIX's form", PEER["jet"]),
     "jet_restitution_0.695": (f"the jet bed at e = {E_EFFECTIVE_JET:.3f}, Jenkins & Zhang's effective e of Table 1's e and "
                               "mu (0.86, 0.2)", [restitution(f"{E_EFFECTIVE_JET:.4f}", "0.86")]),
 }

@@ -4,9 +4,10 @@ does not: 2 s of each, the rows' lateral spread of alpha_s against a bound.
 Both runs are the TFM template (studies/seed000/tfm_bubbling_bed, 15 x 45 cells of 1 cm) with
 the changes tfm_mechanism.py names, taken from there so the test runs what the study runs:
 `restitution_0.859` (v1912's kinetic theory at Jenkins & Zhang's effective restitution of
-Table 1's e and friction) and `slip_production_koch_sangani_restitution_0.859` (the same with
-MFIX's production of Theta by gas-particle slip, Koch & Sangani 1999, in place of v1912's:
-tfm_models/granularSlipProduction). Measured on the fields written every 0.1 s over 1-2 s: the
+Table 1's e and friction) and the study's peer, `slip_production_koch_sangani_restitution_0.859_
+conservative` (the same with MFIX's production of Theta by gas-particle slip, Koch & Sangani
+1999, in place of v1912's, tfm_models/granularSlipProduction, and the solids pressure force as
+-grad P_s, tfm_models/kineticTheoryConservative). Measured on the fields written every 0.1 s over 1-2 s: the
 standard deviation of alpha_s across each row of the bed (the rows initially at least half
 full), averaged over the rows and the writes. Flat layers and 1-D slugs keep it at the walls'
 profile (0.002-0.004 in the study's 6-s runs); bubbles a few cells wide raise it to 0.03-0.07.
@@ -23,7 +24,7 @@ import tfm_mechanism as mechanism  # noqa: E402
 
 END_TIME = 2.0  # s
 FROM = 1.0  # s: the bubbles of the peer are formed by 0.6 s
-PEER = "slip_production_koch_sangani_restitution_0.859"
+PEER = "slip_production_koch_sangani_restitution_0.859_conservative"
 STOCK = "restitution_0.859"
 
 

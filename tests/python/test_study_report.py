@@ -97,8 +97,15 @@ def check_refined_runs():
     check("gas_step -1 refused", "run jet_step: gas_step must be a time step in seconds above 0" in step, step)
     yes = study_refusal("jet_step: {bed: jet, gas_step: yes}")
     check("gas_step yes (a YAML boolean) refused", "gas_step must be a time step in seconds above 0" in yes, yes)
+    plate = study_refusal("jet_plate: {bed: jet, dp_from: plate}")
+    check("dp_from plate refused, the levels named", "run jet_plate: dp_from is where Delta p's lower level is, one of "
+          "inlet, bottom_row, got 'plate'" in plate, plate)
+    check("dp_from bottom_row loads", study_refusal("jet_rows: {bed: jet, dp_from: bottom_row}") == "")
     # fine-coarse pairs: runs that differ in their cells alone
     from replicates import grid_pairs
+    levels = {"c": {"bed": "jet", "dp_from": "bottom_row"}, "f": {"bed": "jet", "refine_y": 2}}
+    check("grid pairs: where Delta p is measured does not part a pair", grid_pairs(levels, list(levels)) == (("c", "f"),),
+          str(grid_pairs(levels, list(levels))))
     runs = {"c": {"bed": "jet"}, "f": {"bed": "jet", "refine_y": 2}, "ff": {"bed": "jet", "refine_x": 2, "refine_y": 4},
             "m2": {"bed": "jet", "coupling": {"coupling.transfer": "per_particle"}}}
     check("grid pairs: coarse-fine, coarse-finest, fine-finest, no other", grid_pairs(runs, list(runs)) ==
@@ -342,19 +349,30 @@ def check_bed_outputs(root):
     d = BedOutputs(case)
     check("BedOutputs: Delta p from the inlet to 20 cm, 90 and 6 Pa", numpy.allclose(d.dp, [90, 6])
           and numpy.allclose(d.p_t, [0.01, 0.02]) and numpy.allclose(d.levels, [0.0, 0.2]), f"{d.dp} {d.levels}")
+    d = BedOutputs(case, dp_from="bottom_row")
+    # by hand: the rows at 5 and 25 cm, means 110 and 30 Pa (then 8 and 2): 80 and 6 Pa
+    check("BedOutputs: Delta p from the bottom row (5 cm) to 20 cm above it (25 cm), 80 and 6 Pa",
+          numpy.allclose(d.dp, [80, 6]) and numpy.allclose(d.levels, [0.05, 0.25]), f"{d.dp} {d.levels}")
+    bad = raises(BedOutputs, case, dp_from="plate")
+    check("BedOutputs: an unknown dp_from refused, the choices named", bad is not None and "inlet, bottom_row" in bad,
+          str(bad))
     # the same case's layout of before 2026-12-07, two rows at 5 and 25 cm: refused, named
     rows = "".join(f"# Probe {k} ({x} {y} 0.005)\n" for k, (y, x) in enumerate(
         (y, x) for y in (0.05, 0.25) for x in (0.005, 0.015, 0.025)))
     write(os.path.join(post, "studyPressure", "0", "p"), rows + "# Time p\n0.01 100 110 120 10 20 60\n")
+    d = BedOutputs(case, dp_from="bottom_row")
+    check("BedOutputs: the old two rows read from the bottom row, as they were measured: 110 - 30 = 80 Pa",
+          numpy.allclose(d.dp, [80]), f"{d.dp}")
     old = raises(BedOutputs, case)
     check("BedOutputs: a run probed on the old two rows refused, the fix named", old is not None
           and "no pressure probe on the row at y = 0.15 m" in old and "prepare and run it again" in old, str(old))
 
 
-def hand_record(name, counts, spacing, maps, tfm=False):
+def hand_record(name, counts, spacing, maps, tfm=False, dp_from="inlet"):
     """A record with a flat series and the given {window: {field: map}}."""
     meta = {"name": name, "tfm": tfm, "wall_seconds": 10.0, "cpu_seconds": 9.0,
-            "grid": {"counts": list(counts), "origin": [0.0, 0.0], "spacing": list(spacing)}, "windows": []}
+            "grid": {"counts": list(counts), "origin": [0.0, 0.0], "spacing": list(spacing)}, "windows": [],
+            "dp_from": dp_from}
     t = numpy.array([0.0, 0.5, 1.0])
     heights = {"t": t, "mean_height": numpy.array([0.1, 0.1, 0.1])}
     if not tfm:
@@ -399,12 +417,46 @@ def check_record(root):
     check("record read back: maps", all(numpy.allclose(back.window_map(f, 0, 1), maps["0-1"][f]) for f in maps["0-1"]))
     check("record read back: grid centres", numpy.allclose(back.x, [[0.05, 0.15]] * 2)
           and numpy.allclose(back.y[:, 0], [0.05, 0.15]) and close(back.width, 0.2))
+    check("record read back: Delta p from the inlet, by its header", back.dp_from == "inlet")
+    rows = hand_record("run_b", (2, 2), (0.1, 0.1), maps, dp_from="bottom_row")
+    rows.write(os.path.join(root, "results", "run_b"))
+    header = open(os.path.join(root, "results", "run_b", "pressure.csv")).readline().strip()
+    check("record: Delta p from the bottom row says so in its header, and is read back so",
+          header == "t (s),dp 20 cm (Pa): p(bottom row) - p(row 20 cm above)"
+          and Record.read(os.path.join(root, "results", "run_b"), "run_b").dp_from == "bottom_row", header)
     os.remove(os.path.join(folder, "maps.csv"))
     try:
         Record.read(folder, "run_a")
         check("a missing record file is named with its run", False)
     except RecordError as e:
         check("a missing record file is named with its run", "run_a" in str(e) and "maps.csv" in str(e), str(e))
+
+
+def check_dp_levels_compared():
+    """replicates.Replicates refuses Delta p compared between runs measured from different
+    levels: within a configuration's realizations, and between two configurations."""
+    from replicates import Replicates
+    maps = {"0-1": {"solids": [[0.5]]}}
+
+    class FakeReport:
+        windows, end_time = [(0.0, 1.0)], 1.0
+        study = {"end_time": 1.0, "realizations": {"runs": ["a", "b"], "seeds": [10007, 10009]},
+                 "runs": {"a": {}, "b": {}}}
+
+        def __init__(self, levels):
+            self.records = {f"{c}_r{k}": hand_record(f"{c}_r{k}", (1, 1), (0.1, 0.1), maps, dp_from=levels[c][k - 1])
+                            for c in levels for k in (1, 2)}
+
+    same = Replicates(FakeReport({"a": ("inlet", "inlet"), "b": ("inlet", "inlet")}), {})
+    check("Delta p from the same level: compared", raises(same.same_dp, "a", "b") is None)
+    across = Replicates(FakeReport({"a": ("inlet", "inlet"), "b": ("bottom_row", "bottom_row")}), {})
+    message = raises(across.same_dp, "a", "b")
+    check("Delta p from the inlet against the bottom row: refused, both named, the fix given",
+          message is not None and "a: inlet" in message and "b: bottom_row" in message and "dp_from" in message,
+          str(message))
+    mixed = raises(Replicates, FakeReport({"a": ("inlet", "bottom_row"), "b": ("inlet", "inlet")}), {})
+    check("realizations of one configuration from different levels: refused, named",
+          mixed is not None and "a_r1: inlet" in mixed and "a_r2: bottom_row" in mixed, str(mixed))
 
 
 def check_fig8_numbers():
@@ -488,6 +540,7 @@ def main():
     check_grid_convergence()
     check_maps()
     check_bed_outputs(root)
+    check_dp_levels_compared()
     check_ratio_numbers()
     check_missing_window_named()
     check_record(root)
