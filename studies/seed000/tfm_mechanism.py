@@ -314,6 +314,9 @@ FLUIDISED_BED_VARIANTS = {
     "fluidised_bed_slip_production_koch_sangani": ("the same with MFIX's production of Theta by slip (Koch & Sangani "
                                                    "1999), not v1912's Gidaspow form: does the tutorial still bubble?",
                                                    slip_production("KochSangani")),
+    "fluidised_bed_slip_production_koch_sangani_conservative": (
+        "the same with the peer's closures: MFIX's slip production and -grad P_s (the tutorial's own e 0.8)",
+        slip_production("KochSangani") + CONSERVATIVE[:2]),
     "fluidised_bed_particles_2.5mm": ("the same with seed 000's particles and inflow: d 2.5 mm, U 1.92 m/s",
                                       PARTICLES_2_5_MM),
     "fluidised_bed_particles_2.5mm_restitution_0.97": ("the same with d 2.5 mm, U 1.92 m/s and e = 0.97",
