@@ -37,6 +37,12 @@ def library_entry():
     return f'libs            ("{LIBRARY}");'
 
 
+def load_library_edit():
+    """The edit of system/controlDict, (pattern, replacement), that loads the library: its
+    libs line put before the `application` entry."""
+    return r"\napplication\s", f"\n{library_entry()}\napplication "
+
+
 def slip_production_options(production, phase="particles"):
     """constant/fvOptions selecting granularSlipProduction for `phase` with `production`
     (one of SLIP_PRODUCTIONS)."""

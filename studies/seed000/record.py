@@ -83,8 +83,8 @@ class Record:
     # Files ------------------------------------------------------------------------------------
     def write(self, folder):
         os.makedirs(folder, exist_ok=True)
-        with open(os.path.join(folder, META), "w") as f:
-            json.dump(self.meta, f, indent=1)
+        with open(os.path.join(folder, META), "w") as f:  # dp_from: pressure.csv's header says it
+            json.dump({k: v for k, v in self.meta.items() if k != "dp_from"}, f, indent=1)
         _write_csv(os.path.join(folder, PRESSURE), ["t (s)", DP_HEADERS[self.dp_from]],
                    zip(self.p_t, self.dp), ("{:.6g}", "{:.6g}"))
         if self.tfm:

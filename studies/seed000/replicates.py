@@ -51,6 +51,10 @@ MARGIN_TEXT = "Δp ±2 % of its value, mean particle height ±0.2 cm, bulk coord
 ALPHA = 0.05
 
 
+class ReplicatesError(ValueError):
+    """Realizations or configurations that cannot be combined or compared, named."""
+
+
 def _refinement(spec):
     return spec.get("refine_x", 1), spec.get("refine_y", 1)
 
@@ -214,20 +218,20 @@ class Replicates:
 
     def _dp_from(self, config, names):
         """Where the configuration's realizations measured Delta p from (record.DP_HEADERS):
-        ValueError when they differ (an ensemble of two measures is not one quantity)."""
+        ReplicatesError when they differ (an ensemble of two measures is not one quantity)."""
         found = {n: self.report.records[n].dp_from for n in names}
         if len(set(found.values())) > 1:
-            raise ValueError(f"{config}: its realizations measured Delta p from different levels "
+            raise ReplicatesError(f"{config}: its realizations measured Delta p from different levels "
                              f"({', '.join(f'{n}: {v}' for n, v in found.items())}); record them again from "
                              "their runs, or run again those measured the old way")
         return next(iter(found.values()))
 
     def same_dp(self, *configs):
-        """ValueError unless the configurations measured Delta p from the same level: their
+        """ReplicatesError unless the configurations measured Delta p from the same level: their
         differences would carry the gap between the levels (100 Pa or more in these beds)."""
         found = {c: self.dp_from[c] for c in configs if c in self.dp_from}
         if len(set(found.values())) > 1:
-            raise ValueError("Delta p compared between runs measured from different levels ("
+            raise ReplicatesError("Delta p compared between runs measured from different levels ("
                              + ", ".join(f"{c}: {v}" for c, v in found.items()) + "): set dp_from in study.yaml "
                              "to the other's, or run one of them again")
 
@@ -301,7 +305,7 @@ class Replicates:
         try:
             tau, m = integrated_autocorrelation_time(values)
         except ValueError as e:
-            raise ValueError(f"{name} {key} over {self.long[0]:g}-{self.long[1]:g} s: {e}") from None
+            raise ReplicatesError(f"{name} {key} over {self.long[0]:g}-{self.long[1]:g} s: {e}") from None
         sizes = sorted({max(1, int(round(length * self.scale / dt))) for length in BATCH_LENGTHS})
         curve = blocking_curve(values, [k for k in sizes if values.size // k >= 2])
         return {"tau_s": tau * dt, "tau_samples": tau, "window_samples": m, "dt": dt, "samples": int(values.size),

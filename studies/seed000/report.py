@@ -26,7 +26,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy  # noqa: E402
 
-from record import Record  # noqa: E402
+from record import DP_HEADERS, Record  # noqa: E402
 from headline import HEADLINE, PAIRS, REPLICATES, Headline, pair_lines, replace_block  # noqa: E402
 from replicates import Replicates  # noqa: E402
 from tfdem.bed import BedOutputs  # noqa: E402
@@ -54,9 +54,6 @@ PAPER = {
 
 
 BED_SOLIDS = 0.05  # the cells whose time-averaged solids fraction is above this are the bed's
-# Fig. 3's title per record.DP_HEADERS level
-DP_LEVELS = {"inlet": "between the inlet and 20 cm above it",
-             "bottom_row": "between the bottom row of cells and the row 20 cm above"}
 CORNER = (0.04, 0.06)  # m: the bottom corners, x within this of a wall and y below this (Fig. 7, 8)
 
 
@@ -244,8 +241,8 @@ class Report:
             r = self.records[n]
             s = averaged(r.p_t, r.dp, start, end, self.batch)
             ax.plot(r.p_t, r.dp, lw=0.6, label=f"{n}: {s['mean']:.0f} ± {s['std']:.0f} Pa (mean ± std, {start:g}-{end:g} s)")
-        levels = {self.records[n].dp_from for n in names}
-        between = DP_LEVELS[levels.pop()] if len(levels) == 1 else "at 20 cm (levels differ: see each record)"
+        levels = {DP_HEADERS[self.records[n].dp_from].split(": ", 1)[1] for n in names}
+        between = levels.pop() if len(levels) == 1 else "at 20 cm (levels differ: see each record)"
         self.save_series(fig, ax, "Δp at 20 cm (Pa)", f"Fig. 3: pressure drop {between}, central-jet bed",
                          "fig3_jet_pressure_drop.png")
 

@@ -319,10 +319,15 @@ def main(argv=None):
                 return 1
             return 0
         import report
+        from record import RecordError
+        from replicates import ReplicatesError
         readme = os.path.join(args.root, "README.md")
-        report.write_report(study, runs, end_time, os.path.join(args.root, "report"),
-                            os.path.join(args.root, "results"),
-                            readme if end_time == study["end_time"] and os.path.isfile(readme) else None)
+        try:
+            report.write_report(study, runs, end_time, os.path.join(args.root, "report"),
+                                os.path.join(args.root, "results"),
+                                readme if end_time == study["end_time"] and os.path.isfile(readme) else None)
+        except (RecordError, ReplicatesError) as e:
+            raise StudyError(str(e)) from None
         return 0
     except (StudyError, BatchError, CaseError, RunError, Reported, tfm_mechanism.MechanismError) as e:
         print(f"study.py: {e}", file=sys.stderr)

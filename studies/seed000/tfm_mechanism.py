@@ -70,7 +70,7 @@ E_EFFECTIVE = jenkins_zhang_effective_restitution(0.97, 0.1)
 E_EFFECTIVE_JET = jenkins_zhang_effective_restitution(0.86, 0.2)
 # The conservative granular pressure force, -grad P_s (tfm_models/kineticTheoryConservative.H)
 KINETIC_THEORY_LIBRARY = tfm_models.LIBRARY
-LOAD_LIBRARY = ("system/controlDict", r"\napplication\s", f"\n{tfm_models.library_entry()}\napplication ")
+LOAD_LIBRARY = ("system/controlDict", *tfm_models.load_library_edit())
 CONSERVATIVE = [(KINETIC, pattern, replacement) for pattern, replacement in tfm_models.CONSERVATIVE_PRESSURE_EDITS] \
     + [LOAD_LIBRARY]
 

@@ -57,19 +57,15 @@ def make_peer(dpm, tfm):
     script = dpm.dem()
     restitution = jenkins_zhang_effective_restitution(script.value(script.variable("en")),
                                                       script.value(script.variable("mu")))
-    kinetic = tfm.file("constant", "turbulenceProperties.particles")
-    text = open(kinetic).read()
-    edits = ((r"(\n\s*e\s+)[0-9.]+;", rf"\g<1>{restitution:.4f};"),) + tfm_models.CONSERVATIVE_PRESSURE_EDITS
-    for pattern, replacement in edits:
-        text, count = re.subn(pattern, replacement, text)
+    kinetic, control = tfm.file("constant", "turbulenceProperties.particles"), tfm.file("system", "controlDict")
+    edits = ([(kinetic, r"(\n\s*e\s+)[0-9.]+;", rf"\g<1>{restitution:.4f};")]
+             + [(kinetic, *edit) for edit in tfm_models.CONSERVATIVE_PRESSURE_EDITS]
+             + [(control, *tfm_models.load_library_edit())])
+    for path, pattern, replacement in edits:
+        text, count = re.subn(pattern, replacement, open(path).read())
         if count != 1:
-            raise SystemExit(f"{kinetic}: not one match of {pattern!r}")
-    open(kinetic, "w").write(text)
-    control = tfm.file("system", "controlDict")
-    text, count = re.subn(r"\napplication\s", f"\n{tfm_models.library_entry()}\napplication ", open(control).read())
-    if count != 1:
-        raise SystemExit(f"{control}: no one 'application' entry")
-    open(control, "w").write(text)
+            raise SystemExit(f"{path}: not one match of {pattern!r}")
+        open(path, "w").write(text)
     with open(tfm.file("constant", "fvOptions"), "w") as f:
         f.write(tfm_models.slip_production_options("KochSangani"))
     print(f"tfm: the kinetic-theory peer, e {restitution:.4f}, Koch & Sangani's slip production, -grad P_s")
